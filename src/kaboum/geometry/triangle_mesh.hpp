@@ -1,0 +1,23 @@
+// The triangle mesh every geometry algorithm reads and writes: flat vertex and index arrays.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace kaboum {
+
+using Vec3 = Eigen::Vector3d;
+using Triangle = std::array<std::uint32_t, 3>;
+
+// Counter-clockwise triangles (seen from outside) index into `vertices`.
+struct TriangleMesh {
+  std::vector<Vec3> vertices;
+  std::vector<Triangle> triangles;
+
+  [[nodiscard]] std::size_t vertexCount() const { return vertices.size(); }
+  [[nodiscard]] std::size_t triangleCount() const { return triangles.size(); }
+};
+
+}  // namespace kaboum
