@@ -4,7 +4,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build ccache pkg-config clang-format
-  libeigen3-dev libassimp-dev libcli11-dev nlohmann-json3-dev libfmt-dev
+  libeigen3-dev libassimp-dev libcli11-dev nlohmann-json3-dev libfmt-dev liburdfdom-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   dart-doc
 )
