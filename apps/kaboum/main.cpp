@@ -24,7 +24,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "kaboum 0.1.0");
 
   auto verbs = verbRegistry();
-  std::sort(verbs.begin(), verbs.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+  std::sort(verbs.begin(), verbs.end(),
+            [](const auto& a, const auto& b) { return a.name < b.name; });
   std::map<CLI::App*, VerbRunner> runners;
   for (const auto& verb : verbs) {
     CLI::App* command = app.add_subcommand(verb.name, verb.description);

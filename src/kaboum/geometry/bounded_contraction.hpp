@@ -1,0 +1,39 @@
+// The bounded edge-contraction point (thesis §4.3.4, Eq. 4.8–4.18, Algorithm 1): minimize a quadric
+// subject to the new vertex lying on the kept side of every plane around the contracted edge.
+#pragma once
+
+#include <span>
+
+#include "kaboum/geometry/quadric.hpp"
+
+namespace kaboum {
+
+// Half-space constraint normal·x - offset ≥ 0, with a unit normal.
+struct HalfSpace {
+  Vec3 normal;
+  double offset;
+  [[nodiscard]] double signedDistance(const Vec3& x) const { return normal.dot(x) - offset; }
+};
+
+struct ContractionPoint {
+  bool feasible = false;  // false: no point satisfies every half-space
+  Vec3 position = Vec3::Zero();
+  double cost = 0.0;  // q(position)
+};
+
+// Algorithm 1 as published: enumerate every subset of 0–3 half-spaces held as equalities, solve
+// each subspace in closed form (Eq. 4.15–4.18) and keep the cheapest candidate satisfying all
+// half-spaces within `tolerance`. O(k³) in the number of half-spaces; the reference the fast solver
+// is tested on.
+ContractionPoint solveContractionExhaustive(const Quadric& q, std::span<const HalfSpace> halfSpaces,
+                                            double tolerance);
+
+// Same optimum, found by constraint generation: start at the unconstrained minimizer, add the most
+// violated half-space, re-solve exactly over the (≤3) active ones plus it, repeat. The cost rises
+// strictly every round, so it terminates; it falls back to the exhaustive search only if a
+// numerical stall is detected. `q` must be positive definite (regularize singular quadrics before
+// calling).
+ContractionPoint solveContraction(const Quadric& q, std::span<const HalfSpace> halfSpaces,
+                                  double tolerance);
+
+}  // namespace kaboum

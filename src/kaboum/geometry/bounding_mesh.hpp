@@ -1,0 +1,58 @@
+// The bounding mesh algorithm (thesis §4.3, Algorithm 2): greedy bounded edge contraction that
+// simplifies a closed mesh to an outer (enclosing) or inner (enclosed) single-sided approximation.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <limits>
+#include <string>
+
+#include "kaboum/geometry/bound_side.hpp"
+#include "kaboum/geometry/quadric.hpp"
+#include "kaboum/geometry/triangle_mesh.hpp"
+
+namespace kaboum {
+
+// The edge-contraction cost of §4.3.5.
+enum class ContractionCost {
+  Planes,     // E_planes (Eq. 4.4): squared distances to the planes around the edge
+  Triangles,  // E_triangles (Appendix A.2): squared distances to triangle centroids; keeps convex
+              // meshes convex
+};
+
+struct BoundingMeshOptions {
+  BoundSide side = BoundSide::Outer;
+  std::size_t targetVertices = 0;  // stop when this many vertices remain (0: no count target)
+  // Stop contracting edges whose quadric error, as a distance, exceeds this (Algorithm 2's ε).
+  double maxError = std::numeric_limits<double>::infinity();
+  ContractionCost cost = ContractionCost::Planes;
+  QuadricMerge merge = QuadricMerge::Constant;
+  double mergeLength = 0.0;  // l of Eq. 4.7 for QuadricMerge::Full; 0 → 1% of the diagonal
+  // Called now and then with the fraction of the work done (0..1).
+  std::function<void(double)> progress;
+};
+
+struct BoundingMeshStats {
+  std::size_t inputVertices = 0, outputVertices = 0, contractions = 0;
+  std::size_t lockedVertices = 0;  // on borders or non-manifold edges/vertices: never moved
+  std::size_t rejectedInfeasible = 0, rejectedTopology = 0, rejectedGeometry = 0;
+  std::size_t rejectedCrossing = 0;  // the new triangles would have crossed the mesh
+  double quadricError = 0.0;  // largest quadric error (as a distance) of an executed contraction
+  double seconds = 0.0;
+  std::string stopReason;  // "vertex target reached", or why no further contraction was valid
+};
+
+struct BoundingMeshResult {
+  TriangleMesh mesh;
+  BoundingMeshStats stats;
+};
+
+// Simplifies `input`, which must be welded and consistently oriented with outward normals (see
+// repairOrientation). Border edges of open meshes and non-manifold parts are kept fixed; all
+// components are kept. Every executed contraction keeps the result closed, edge-manifold, oriented,
+// free of degenerate and flipped faces and of self-intersections, and on its side of the previous
+// mesh. Throws InputError if
+// the orientation is inconsistent.
+BoundingMeshResult simplifyBounding(const TriangleMesh& input, const BoundingMeshOptions& options);
+
+}  // namespace kaboum

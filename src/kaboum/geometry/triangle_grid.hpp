@@ -1,0 +1,69 @@
+// A dynamic spatial hash of triangles by bounding box, for finding the triangles near a moving
+// patch while a mesh is being edited. Allocation-free after warm-up (pooled bucket entries).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "kaboum/geometry/triangle_mesh.hpp"
+
+namespace kaboum {
+
+struct Box3 {
+  Vec3 lo, hi;
+  [[nodiscard]] bool overlaps(const Box3& o) const {
+    return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all();
+  }
+};
+
+Box3 triangleBox(const Vec3& a, const Vec3& b, const Vec3& c);
+
+class TriangleGrid {
+ public:
+  // `cellSize` should be about the length of a typical edge; `expectedTriangles` sizes the table.
+  TriangleGrid(double cellSize, std::size_t expectedTriangles);
+
+  void insert(std::uint32_t triangle, const Box3& box);
+  // `box` must be the box the triangle was inserted with.
+  void remove(std::uint32_t triangle, const Box3& box);
+  // Calls f(triangle) for every inserted triangle registered in a cell `box` touches (a triangle
+  // may be reported more than once; callers deduplicate).
+  template <class F>
+  void forEachNear(const Box3& box, F&& f) const {
+    forEachCell(box, [&](std::size_t bucket) {
+      for (std::uint32_t e = heads_[bucket]; e != kEnd; e = entries_[e].next)
+        f(entries_[e].triangle);
+    });
+  }
+  [[nodiscard]] double cellSize() const { return cellSize_; }
+
+ private:
+  static constexpr std::uint32_t kEnd = 0xffffffffu;
+  struct Entry {
+    std::uint32_t triangle, next;
+  };
+  template <class F>
+  void forEachCell(const Box3& box, F&& f) const {
+    const Eigen::Array3i lo = (box.lo.array() / cellSize_).floor().cast<int>();
+    const Eigen::Array3i hi = (box.hi.array() / cellSize_).floor().cast<int>();
+    for (int x = lo.x(); x <= hi.x(); ++x) {
+      for (int y = lo.y(); y <= hi.y(); ++y) {
+        for (int z = lo.z(); z <= hi.z(); ++z) f(bucketOf(x, y, z));
+      }
+    }
+  }
+  [[nodiscard]] std::size_t bucketOf(int x, int y, int z) const {
+    const auto h = static_cast<std::uint64_t>(static_cast<std::uint32_t>(x)) * 73856093ull ^
+                   static_cast<std::uint64_t>(static_cast<std::uint32_t>(y)) * 19349663ull ^
+                   static_cast<std::uint64_t>(static_cast<std::uint32_t>(z)) * 83492791ull;
+    return static_cast<std::size_t>(h & mask_);
+  }
+
+  double cellSize_;
+  std::uint64_t mask_;
+  std::vector<std::uint32_t> heads_;
+  std::vector<Entry> entries_;
+  std::uint32_t free_ = kEnd;
+};
+
+}  // namespace kaboum
