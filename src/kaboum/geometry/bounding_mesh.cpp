@@ -90,6 +90,8 @@ class BoundingMeshSimplifier {
   std::vector<std::uint32_t> fanA_, fanB_, neighbours_;
   std::vector<std::array<Vec3, 3>> newCorners_;
   std::vector<Triangle> newIds_;
+  std::vector<Box3> newBoxes_;
+  std::vector<std::uint32_t> nearby_;
   std::vector<HalfSpace> halfSpaces_;
   BoundingMeshStats stats_;
 };
@@ -413,22 +415,35 @@ bool BoundingMeshSimplifier::newFanCrossesMesh(const Candidate& c) {
   for (std::uint32_t t : fanA_) addNew(t);
   for (std::uint32_t t : fanB_) addNew(t);
 
+  // One grid query for the whole fan; then each nearby triangle is tested against the new
+  // triangles whose boxes it overlaps.
+  Box3 fanBox{Vec3::Constant(std::numeric_limits<double>::infinity()),
+              Vec3::Constant(-std::numeric_limits<double>::infinity())};
+  newBoxes_.clear();
+  for (const auto& corners : newCorners_) {
+    newBoxes_.push_back(triangleBox(corners[0], corners[1], corners[2]));
+    fanBox = {fanBox.lo.cwiseMin(newBoxes_.back().lo), fanBox.hi.cwiseMax(newBoxes_.back().hi)};
+  }
+  nearby_.clear();
+  grid_->forEachNear(fanBox, [&](std::uint32_t u) {
+    if (triangleMark_[u] == exclude) return;
+    triangleMark_[u] = exclude;  // seen
+    if (triangleAlive_[u] && fanBox.overlaps(boxes_[u])) nearby_.push_back(u);
+  });
   for (std::size_t i = 0; i < newIds_.size(); ++i) {
     for (std::size_t j = i + 1; j < newIds_.size(); ++j) {
       if (trianglesIntersect(newCorners_[i], newIds_[i], newCorners_[j], newIds_[j])) return true;
     }
-    const Box3 box = triangleBox(newCorners_[i][0], newCorners_[i][1], newCorners_[i][2]);
-    const std::uint32_t seen = ++stamp_;
-    bool crosses = false;
-    grid_->forEachNear(box, [&](std::uint32_t u) {
-      if (crosses || triangleMark_[u] == exclude || triangleMark_[u] == seen) return;
-      if (triangleMark_[u] != exclude) triangleMark_[u] = seen;
-      if (!triangleAlive_[u] || !box.overlaps(boxes_[u])) return;
-      const Triangle& ids = triangles_[u];
-      const std::array<Vec3, 3> corners{positions_[ids[0]], positions_[ids[1]], positions_[ids[2]]};
-      crosses = trianglesIntersect(newCorners_[i], newIds_[i], corners, ids);
-    });
-    if (crosses) return true;
+  }
+  for (std::uint32_t u : nearby_) {
+    const Triangle& ids = triangles_[u];
+    const std::array<Vec3, 3> corners{positions_[ids[0]], positions_[ids[1]], positions_[ids[2]]};
+    for (std::size_t i = 0; i < newIds_.size(); ++i) {
+      if (newBoxes_[i].overlaps(boxes_[u]) &&
+          trianglesIntersect(newCorners_[i], newIds_[i], corners, ids)) {
+        return true;
+      }
+    }
   }
   return false;
 }
