@@ -1,6 +1,5 @@
 #include "kaboum/geometry/bounded_contraction.hpp"
 
-#include <Eigen/Cholesky>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -16,10 +15,15 @@ constexpr double kParallel = 1e-10;  // squared sine below which two planes coun
 std::optional<Vec3> solveOnSubspace(const Quadric& q, std::span<const HalfSpace* const> active) {
   const auto gradientAt = [&](const Vec3& x) -> Vec3 { return q.a * x + q.b; };
   switch (active.size()) {
-    case 0: {  // Eq. 4.15: unconstrained.
-      const auto ldlt = q.a.ldlt();
-      if (ldlt.info() != Eigen::Success) return std::nullopt;
-      return Vec3(ldlt.solve(-q.b));
+    case 0: {  // Eq. 4.15: unconstrained, A x = -b; rows of A⁻¹ are the column cross products /
+               // det.
+      const Eigen::Matrix3d& a = q.a;
+      const Vec3 c0 = a.col(1).cross(a.col(2));
+      const double det = a.col(0).dot(c0);
+      if (!(det > 0.0)) return std::nullopt;
+      const Vec3 c1 = a.col(2).cross(a.col(0));
+      const Vec3 c2 = a.col(0).cross(a.col(1));
+      return Vec3(-c0.dot(q.b) / det, -c1.dot(q.b) / det, -c2.dot(q.b) / det);
     }
     case 1: {  // Eq. 4.16: a plane spanned by two tangents.
       const Vec3& n = active[0]->normal;

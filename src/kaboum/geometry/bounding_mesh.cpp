@@ -53,7 +53,8 @@ class BoundingMeshSimplifier {
   bool evaluate(std::uint32_t a, std::uint32_t b, Candidate& out);
   void addHalfSpace(std::uint32_t t, const Vec3& origin);
   void queue(std::uint32_t a, std::uint32_t b);
-  enum class Outcome { Done, Topology, Geometry, Crossing };
+  enum class Outcome { Done, Stale, Topology, Geometry, Crossing };
+  bool stillAboveFanPlanes(const Candidate& c) const;
   bool newFanCrossesMesh(const Candidate& c);
   void buildGrid(double cellSize);
   Box3 boxOf(std::uint32_t t) const {
@@ -293,6 +294,8 @@ BoundingMeshSimplifier::Outcome BoundingMeshSimplifier::contract(const Candidate
   const std::uint32_t a = c.a, b = c.b;
   gatherFan(a, fanA_);
   gatherFan(b, fanB_);
+  const bool changed = version_[a] != c.versionA || version_[b] != c.versionB;
+  if (changed && !stillAboveFanPlanes(c)) return Outcome::Stale;
 
   // Topology: exactly two triangles on the edge, and the link condition (the only common
   // neighbours of a and b are the two vertices opposite the edge), or the mesh stops being
@@ -390,6 +393,19 @@ BoundingMeshSimplifier::Outcome BoundingMeshSimplifier::contract(const Candidate
     if (!vertexLocked_[w]) queue(a, w);
   }
   return Outcome::Done;
+}
+
+// A candidate whose neighbourhood changed keeps its cost (the quadrics of a and b did not change)
+// and stays valid as long as its point is still on the kept side of every current plane around the
+// edge; only then does it need solving again. This spares most re-evaluations.
+bool BoundingMeshSimplifier::stillAboveFanPlanes(const Candidate& c) const {
+  const double sign = options_.side == BoundSide::Outer ? 1.0 : -1.0;
+  const auto above = [&](std::uint32_t t) {
+    return normals_[t] == Vec3::Zero() ||
+           sign * (normals_[t].dot(c.position) - offsets_[t]) >= -tolerance_;
+  };
+  return std::all_of(fanA_.begin(), fanA_.end(), above) &&
+         std::all_of(fanB_.begin(), fanB_.end(), above);
 }
 
 // The new fan may not cross any other triangle of the mesh nor itself: this keeps outer results
@@ -562,10 +578,6 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
     heap_.pop();
     if (!vertexAlive_[c.a] || !vertexAlive_[c.b]) continue;
     if (fanVersion_[c.a] != c.fanA || fanVersion_[c.b] != c.fanB) continue;  // superseded
-    if (version_[c.a] != c.versionA || version_[c.b] != c.versionB) {
-      queue(c.a, c.b);  // neighbourhood changed: re-evaluate
-      continue;
-    }
     if (c.cost > maxCost) {
       parked_.push_back(c);
       continue;
@@ -581,6 +593,9 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
           options_.progress(static_cast<double>(stats_.contractions) /
                             static_cast<double>(toRemove));
         }
+        break;
+      case Outcome::Stale:
+        queue(c.a, c.b);
         break;
       case Outcome::Topology:
         ++stats_.rejectedTopology;

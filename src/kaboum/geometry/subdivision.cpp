@@ -73,7 +73,8 @@ TriangleMesh subdivideLoop(const TriangleMesh& mesh) {
   out.triangles.reserve(mesh.triangles.size() * 4);
   for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
     const Triangle& c = mesh.triangles[t];
-    const std::uint32_t e0 = edgeVertex[3 * t], e1 = edgeVertex[3 * t + 1], e2 = edgeVertex[3 * t + 2];
+    const std::uint32_t e0 = edgeVertex[3 * t], e1 = edgeVertex[3 * t + 1],
+                        e2 = edgeVertex[3 * t + 2];
     out.triangles.push_back({c[0], e0, e2});
     out.triangles.push_back({c[1], e1, e0});
     out.triangles.push_back({c[2], e2, e1});

@@ -1,5 +1,5 @@
-// Loop subdivision: each triangle becomes four and vertices are smoothed, turning a real mesh into a
-// larger, still realistic one (used to make 10^5–10^6-vertex benchmark inputs).
+// Loop subdivision: each triangle becomes four and vertices are smoothed, turning a real mesh into
+// a larger, still realistic one (used to make 10^5–10^6-vertex benchmark inputs).
 #pragma once
 
 #include "kaboum/geometry/triangle_mesh.hpp"

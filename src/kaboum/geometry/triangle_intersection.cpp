@@ -33,8 +33,33 @@ bool segmentMeetsTriangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec
   return (s1 >= 0 && s2 >= 0 && s3 >= 0) || (s1 <= 0 && s2 <= 0 && s3 <= 0);
 }
 
+namespace {
+
+// True when all of `x` lies strictly on one side of the plane of `y`, vertices shared with `y`
+// (which lie on it) aside: then the two cannot meet beyond their shared vertices.
+bool strictlyOneSide(const std::array<Vec3, 3>& x, const Triangle& xIds,
+                     const std::array<Vec3, 3>& y, const Triangle& yIds) {
+  const Vec3 n = (y[1] - y[0]).cross(y[2] - y[0]);
+  int positive = 0, negative = 0;
+  for (int i = 0; i < 3; ++i) {
+    if (xIds[i] == yIds[0] || xIds[i] == yIds[1] || xIds[i] == yIds[2]) continue;
+    const double d = n.dot(x[i] - y[0]);
+    if (d > 0) {
+      ++positive;
+    } else if (d < 0) {
+      ++negative;
+    } else {
+      return false;
+    }
+  }
+  return positive == 0 || negative == 0;
+}
+
+}  // namespace
+
 bool trianglesIntersect(const std::array<Vec3, 3>& t, const Triangle& tIds,
                         const std::array<Vec3, 3>& u, const Triangle& uIds) {
+  if (strictlyOneSide(u, uIds, t, tIds) || strictlyOneSide(t, tIds, u, uIds)) return false;
   int tOnly = -1, uOnly = -1;
   switch (sharedCount(tIds, uIds, tOnly, uOnly)) {
     case 0:
