@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# The main job: installs dependencies, builds kaboum, then bounds a real robot mesh (a KUKA KR5 link
+# from Debian's dart-doc) from outside and inside and verifies both results.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+cmake --preset release
+cmake --build --preset release --target kaboum_cli
+mesh=/usr/share/doc/dart/data/urdf/KR5/meshes/forearm.STL
+mkdir -p out
+echo "== outer bounding mesh of $mesh at 10% of its vertices"
+build/release/kaboum bound "$mesh" -o out/kr5-forearm-outer.obj --outer --ratio 0.1
+build/release/kaboum check "$mesh" out/kr5-forearm-outer.obj --outer
+echo "== inner bounding mesh"
+build/release/kaboum bound "$mesh" -o out/kr5-forearm-inner.obj --inner --ratio 0.1
+build/release/kaboum check "$mesh" out/kr5-forearm-inner.obj --inner
