@@ -19,11 +19,12 @@ const TriangleMesh& sphere() {
   return mesh;
 }
 
-// Points at radius 0.8 to 1.2 around the unit sphere: half inside, half outside, all near it.
-std::vector<Vec3> nearSurfaceQueries() {
+// Points at most `offset` inside or outside the unit sphere (verifier samples are mostly close to
+// the surface, 1e-3 of the radius; 0.2 shows far queries).
+std::vector<Vec3> nearSurfaceQueries(double offset) {
   std::mt19937_64 engine(1);
   std::normal_distribution<double> normal(0.0, 1.0);
-  std::uniform_real_distribution<double> radius(0.8, 1.2);
+  std::uniform_real_distribution<double> radius(1.0 - offset, 1.0 + offset);
   std::vector<Vec3> queries(4096);
   for (Vec3& q : queries) {
     q = Vec3(normal(engine), normal(engine), normal(engine)).normalized() * radius(engine);
@@ -40,29 +41,34 @@ void BM_BvhBuild(benchmark::State& state) {
 }
 BENCHMARK(BM_BvhBuild)->Unit(benchmark::kMillisecond);
 
+// Argument: largest distance of the queries from the surface, in thousandths of the radius.
+double queryOffset(const benchmark::State& state) {
+  return 1e-3 * static_cast<double>(state.range(0));
+}
+
 void BM_BvhClosest(benchmark::State& state) {
   const TriangleBvh bvh(sphere());
-  const std::vector<Vec3> queries = nearSurfaceQueries();
+  const std::vector<Vec3> queries = nearSurfaceQueries(queryOffset(state));
   std::size_t i = 0;
   for (auto _ : state) {
     benchmark::DoNotOptimize(bvh.closest(queries[i++ % queries.size()]));
   }
 }
-BENCHMARK(BM_BvhClosest);
+BENCHMARK(BM_BvhClosest)->Arg(1)->Arg(200);
 
 void BM_BvhContains(benchmark::State& state) {
   const TriangleBvh bvh(sphere());
-  const std::vector<Vec3> queries = nearSurfaceQueries();
+  const std::vector<Vec3> queries = nearSurfaceQueries(queryOffset(state));
   std::size_t i = 0;
   for (auto _ : state) {
     benchmark::DoNotOptimize(bvh.contains(queries[i++ % queries.size()]));
   }
 }
-BENCHMARK(BM_BvhContains);
+BENCHMARK(BM_BvhContains)->Arg(1)->Arg(200);
 
 void BM_BvhIntersectsTriangle(benchmark::State& state) {
   const TriangleBvh bvh(sphere());
-  const std::vector<Vec3> queries = nearSurfaceQueries();
+  const std::vector<Vec3> queries = nearSurfaceQueries(0.2);
   std::size_t i = 0;
   for (auto _ : state) {
     const Vec3& q = queries[i++ % queries.size()];

@@ -5,7 +5,6 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 #include "kaboum/core/error.hpp"
 
@@ -201,7 +200,7 @@ TriangleBvh::TriangleBvh(const TriangleMesh& mesh) : vertices_(mesh.vertices) {
       throw InputError(fmt::format("vertex {} has a non-finite coordinate", i));
     }
   }
-  std::vector<Vec3> centroids(count), boxLo(count), boxHi(count);
+  std::vector<BuildItem> items(count);
   Vec3 meshLo = Vec3::Constant(std::numeric_limits<double>::infinity());
   Vec3 meshHi = -meshLo;
   for (std::size_t t = 0; t < count; ++t) {
@@ -213,37 +212,34 @@ TriangleBvh::TriangleBvh(const TriangleMesh& mesh) : vertices_(mesh.vertices) {
       }
     }
     const Vec3 &a = vertices_[tri[0]], &b = vertices_[tri[1]], &c = vertices_[tri[2]];
-    boxLo[t] = a.cwiseMin(b).cwiseMin(c);
-    boxHi[t] = a.cwiseMax(b).cwiseMax(c);
-    centroids[t] = (a + b + c) / 3.0;
-    meshLo = meshLo.cwiseMin(boxLo[t]);
-    meshHi = meshHi.cwiseMax(boxHi[t]);
+    items[t] = {a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c), (a + b + c) / 3.0,
+                static_cast<std::uint32_t>(t)};
+    meshLo = meshLo.cwiseMin(items[t].lo);
+    meshHi = meshHi.cwiseMax(items[t].hi);
   }
   // Padding keeps boxes conservative under the rounding of slab tests and near-surface queries.
   padding_ = 1e-9 * (meshHi - meshLo).norm() +
              1e-12 * meshLo.cwiseAbs().cwiseMax(meshHi.cwiseAbs()).maxCoeff();
-  triangleIds_.resize(count);
-  std::iota(triangleIds_.begin(), triangleIds_.end(), 0u);
   nodes_.reserve(2 * count / kLeafSize + 1);
-  build(0, static_cast<std::uint32_t>(count), 0, centroids, boxLo, boxHi);
+  build(items, 0, static_cast<std::uint32_t>(count), 0);
   nodes_.shrink_to_fit();
   triangles_.resize(count);
+  triangleIds_.resize(count);
   for (std::size_t slot = 0; slot < count; ++slot) {
-    triangles_[slot] = mesh.triangles[triangleIds_[slot]];
+    triangleIds_[slot] = items[slot].triangle;
+    triangles_[slot] = mesh.triangles[items[slot].triangle];
   }
 }
 
-std::uint32_t TriangleBvh::build(std::uint32_t begin, std::uint32_t end, int depth,
-                                 std::vector<Vec3>& centroids, std::vector<Vec3>& boxLo,
-                                 std::vector<Vec3>& boxHi) {
-  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  Vec3 centroidLo = lo, centroidHi = hi;
+std::uint32_t TriangleBvh::build(std::vector<BuildItem>& items, std::uint32_t begin,
+                                 std::uint32_t end, int depth) {
+  const Vec3 infinite = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 lo = infinite, hi = -infinite, centroidLo = infinite, centroidHi = -infinite;
   for (std::uint32_t k = begin; k < end; ++k) {
-    const std::uint32_t t = triangleIds_[k];
-    lo = lo.cwiseMin(boxLo[t]);
-    hi = hi.cwiseMax(boxHi[t]);
-    centroidLo = centroidLo.cwiseMin(centroids[t]);
-    centroidHi = centroidHi.cwiseMax(centroids[t]);
+    lo = lo.cwiseMin(items[k].lo);
+    hi = hi.cwiseMax(items[k].hi);
+    centroidLo = centroidLo.cwiseMin(items[k].centroid);
+    centroidHi = centroidHi.cwiseMax(items[k].centroid);
   }
   const auto nodeIndex = static_cast<std::uint32_t>(nodes_.size());
   nodes_.push_back({lo.array() - padding_, hi.array() + padding_, 0, 0});
@@ -254,44 +250,53 @@ std::uint32_t TriangleBvh::build(std::uint32_t begin, std::uint32_t end, int dep
     return nodeIndex;
   }
 
+  const auto first = items.begin() + begin, last = items.begin() + end;
   const Vec3 centroidExtent = centroidHi - centroidLo;
-  const auto ids = triangleIds_.begin();
-  std::uint32_t middle = begin;
+  const Vec3 binScale =
+      (centroidExtent.array() > 0.0).select(kBins / centroidExtent.array(), Eigen::Array3d::Zero());
+  const auto binOf = [&](const BuildItem& item, int axis) {
+    return std::min(kBins - 1,
+                    static_cast<int>((item.centroid[axis] - centroidLo[axis]) * binScale[axis]));
+  };
+  auto middle = first;
   if (depth < kMaxSahDepth) {
-    // Binned surface area heuristic over all three axes (cost = area * triangles on each side).
+    // Binned surface area heuristic over all three axes at once: cost = area * triangles, summed
+    // over both sides of each of the kBins - 1 candidate planes per axis.
+    struct Bin {
+      Vec3 lo, hi;
+      std::uint32_t count;
+    };
+    std::array<std::array<Bin, kBins>, 3> bins;
+    for (auto& axisBins : bins) axisBins.fill({infinite, -infinite, 0});
+    for (auto item = first; item != last; ++item) {
+      for (int axis = 0; axis < 3; ++axis) {
+        Bin& bin = bins[axis][binOf(*item, axis)];
+        bin.lo = bin.lo.cwiseMin(item->lo);
+        bin.hi = bin.hi.cwiseMax(item->hi);
+        ++bin.count;
+      }
+    }
     double bestCost = std::numeric_limits<double>::infinity();
     int bestAxis = -1, bestSplit = 0;
     for (int axis = 0; axis < 3; ++axis) {
-      if (!(centroidExtent[axis] > 0.0)) continue;
-      const double scale = kBins / centroidExtent[axis];
-      std::array<std::uint32_t, kBins> binCount{};
-      std::array<Vec3, kBins> binLo, binHi;
-      binLo.fill(Vec3::Constant(std::numeric_limits<double>::infinity()));
-      binHi.fill(-binLo[0]);
-      for (std::uint32_t k = begin; k < end; ++k) {
-        const std::uint32_t t = triangleIds_[k];
-        const int bin =
-            std::min(kBins - 1, static_cast<int>((centroids[t][axis] - centroidLo[axis]) * scale));
-        ++binCount[bin];
-        binLo[bin] = binLo[bin].cwiseMin(boxLo[t]);
-        binHi[bin] = binHi[bin].cwiseMax(boxHi[t]);
-      }
-      std::array<double, kBins> leftCost{};  // leftCost[s]: bins [0, s)
-      Vec3 sweepLo = binLo[0], sweepHi = binHi[0];
+      if (binScale[axis] == 0.0) continue;
+      const auto& axisBins = bins[axis];
+      std::array<double, kBins> leftCost{};  // leftCost[s]: bins [0, s) on the left
+      Vec3 sweepLo = infinite, sweepHi = -infinite;
       std::uint32_t sweepCount = 0;
       for (int s = 1; s < kBins; ++s) {
-        sweepCount += binCount[s - 1];
-        sweepLo = sweepLo.cwiseMin(binLo[s - 1]);
-        sweepHi = sweepHi.cwiseMax(binHi[s - 1]);
+        sweepCount += axisBins[s - 1].count;
+        sweepLo = sweepLo.cwiseMin(axisBins[s - 1].lo);
+        sweepHi = sweepHi.cwiseMax(axisBins[s - 1].hi);
         leftCost[s] = sweepCount > 0 ? sweepCount * surfaceArea(sweepLo, sweepHi) : 0.0;
       }
-      sweepLo = binLo[kBins - 1];
-      sweepHi = binHi[kBins - 1];
+      sweepLo = infinite;
+      sweepHi = -infinite;
       sweepCount = 0;
       for (int s = kBins - 1; s >= 1; --s) {
-        sweepCount += binCount[s];
-        sweepLo = sweepLo.cwiseMin(binLo[s]);
-        sweepHi = sweepHi.cwiseMax(binHi[s]);
+        sweepCount += axisBins[s].count;
+        sweepLo = sweepLo.cwiseMin(axisBins[s].lo);
+        sweepHi = sweepHi.cwiseMax(axisBins[s].hi);
         if (sweepCount == 0 || sweepCount == count) continue;
         const double cost = leftCost[s] + sweepCount * surfaceArea(sweepLo, sweepHi);
         if (cost < bestCost) {
@@ -302,31 +307,22 @@ std::uint32_t TriangleBvh::build(std::uint32_t begin, std::uint32_t end, int dep
       }
     }
     if (bestAxis >= 0) {
-      const double scale = kBins / centroidExtent[bestAxis];
-      const double origin = centroidLo[bestAxis];
-      middle = static_cast<std::uint32_t>(
-          std::partition(ids + begin, ids + end,
-                         [&](std::uint32_t t) {
-                           return std::min(kBins - 1,
-                                           static_cast<int>((centroids[t][bestAxis] - origin) *
-                                                            scale)) < bestSplit;
-                         }) -
-          ids);
+      middle = std::partition(
+          first, last, [&](const BuildItem& item) { return binOf(item, bestAxis) < bestSplit; });
     }
   }
-  if (middle == begin || middle == end) {
+  if (middle == first || middle == last) {
     // Median split on the widest centroid axis: guarantees progress and logarithmic depth.
     Eigen::Index axis = 0;
     centroidExtent.maxCoeff(&axis);
-    middle = begin + count / 2;
-    std::nth_element(ids + begin, ids + middle, ids + end, [&](std::uint32_t x, std::uint32_t y) {
-      return centroids[x][axis] < centroids[y][axis];
+    middle = first + count / 2;
+    std::nth_element(first, middle, last, [&](const BuildItem& x, const BuildItem& y) {
+      return x.centroid[axis] < y.centroid[axis];
     });
   }
-  build(begin, middle, depth + 1, centroids, boxLo, boxHi);
-  const std::uint32_t second = build(middle, end, depth + 1, centroids, boxLo, boxHi);
-  nodes_[nodeIndex].first = second;
-  nodes_[nodeIndex].count = 0;
+  const auto split = static_cast<std::uint32_t>(middle - items.begin());
+  build(items, begin, split, depth + 1);
+  nodes_[nodeIndex].first = build(items, split, end, depth + 1);
   return nodeIndex;
 }
 

@@ -81,9 +81,13 @@ class TriangleBvh {
   };
   static constexpr std::size_t kMaxDepth = 96;  // build keeps depth below this (stack size)
 
-  std::uint32_t build(std::uint32_t begin, std::uint32_t end, int depth,
-                      std::vector<Vec3>& centroids, std::vector<Vec3>& boxLo,
-                      std::vector<Vec3>& boxHi);
+  struct BuildItem {  // one triangle while building, kept contiguous for cache-friendly passes
+    Vec3 lo, hi, centroid;
+    std::uint32_t triangle;
+  };
+  // Appends the subtree over items [begin, end) and returns its node index.
+  std::uint32_t build(std::vector<BuildItem>& items, std::uint32_t begin, std::uint32_t end,
+                      int depth);
   // Winding number along one ray, or nothing when the ray is ambiguous (see contains()).
   [[nodiscard]] std::optional<int> rayWinding(const Vec3& origin, const Vec3& direction) const;
 
