@@ -148,9 +148,11 @@ Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const V
   return dBc <= dCa ? onBc : onCa;
 }
 
-bool segmentIntersectsTriangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,
-                               const Vec3& c) {
-  if (isDegenerate(a, b, c)) return false;
+namespace {
+
+// segmentIntersectsTriangle for a triangle already known not to be degenerate.
+bool segmentMeetsTriangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,
+                          const Vec3& c) {
   const int sideP = orientation(a, b, c, p), sideQ = orientation(a, b, c, q);
   if (sideP * sideQ > 0) return false;
   if (sideP == 0 && sideQ == 0) {
@@ -159,6 +161,13 @@ bool segmentIntersectsTriangle(const Vec3& p, const Vec3& q, const Vec3& a, cons
   }
   // The segment meets the plane; it meets the triangle if its line passes inside all three edges.
   return !mixedSigns(orientation(p, q, a, b), orientation(p, q, b, c), orientation(p, q, c, a));
+}
+
+}  // namespace
+
+bool segmentIntersectsTriangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,
+                               const Vec3& c) {
+  return !isDegenerate(a, b, c) && segmentMeetsTriangle(p, q, a, b, c);
 }
 
 bool trianglesIntersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0,
@@ -174,19 +183,15 @@ bool trianglesIntersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Ve
     return coplanarTrianglesIntersect(a0, a1, a2, b0, b1, b2);
   }
   // Non-coplanar: the intersection segment, if any, ends on an edge of one of the triangles.
-  return segmentIntersectsTriangle(a0, a1, b0, b1, b2) ||
-         segmentIntersectsTriangle(a1, a2, b0, b1, b2) ||
-         segmentIntersectsTriangle(a2, a0, b0, b1, b2) ||
-         segmentIntersectsTriangle(b0, b1, a0, a1, a2) ||
-         segmentIntersectsTriangle(b1, b2, a0, a1, a2) ||
-         segmentIntersectsTriangle(b2, b0, a0, a1, a2);
+  return segmentMeetsTriangle(a0, a1, b0, b1, b2) || segmentMeetsTriangle(a1, a2, b0, b1, b2) ||
+         segmentMeetsTriangle(a2, a0, b0, b1, b2) || segmentMeetsTriangle(b0, b1, a0, a1, a2) ||
+         segmentMeetsTriangle(b1, b2, a0, a1, a2) || segmentMeetsTriangle(b2, b0, a0, a1, a2);
 }
 
 bool trianglesMeetBesideSharedVertex(const Vec3& s, const Vec3& p1, const Vec3& q1, const Vec3& p2,
                                      const Vec3& q2) {
   if (isDegenerate(s, p1, q1) || isDegenerate(s, p2, q2)) return false;
-  return segmentIntersectsTriangle(p1, q1, s, p2, q2) ||
-         segmentIntersectsTriangle(p2, q2, s, p1, q1);
+  return segmentMeetsTriangle(p1, q1, s, p2, q2) || segmentMeetsTriangle(p2, q2, s, p1, q1);
 }
 
 TriangleBvh::TriangleBvh(const TriangleMesh& mesh) : vertices_(mesh.vertices) {
