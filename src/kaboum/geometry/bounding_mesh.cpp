@@ -9,8 +9,8 @@
 
 #include "kaboum/core/error.hpp"
 #include "kaboum/geometry/bounded_contraction.hpp"
+#include "kaboum/geometry/triangle_bvh.hpp"
 #include "kaboum/geometry/triangle_grid.hpp"
-#include "kaboum/geometry/triangle_intersection.hpp"
 
 namespace kaboum {
 namespace {
@@ -448,7 +448,8 @@ bool BoundingMeshSimplifier::newFanCrossesMesh(const Candidate& c) {
   });
   for (std::size_t i = 0; i < newIds_.size(); ++i) {
     for (std::size_t j = i + 1; j < newIds_.size(); ++j) {
-      if (trianglesIntersect(newCorners_[i], newIds_[i], newCorners_[j], newIds_[j])) return true;
+      if (meshTrianglesIntersect(newCorners_[i], newIds_[i], newCorners_[j], newIds_[j]))
+        return true;
     }
   }
   for (std::uint32_t u : nearby_) {
@@ -456,7 +457,7 @@ bool BoundingMeshSimplifier::newFanCrossesMesh(const Candidate& c) {
     const std::array<Vec3, 3> corners{positions_[ids[0]], positions_[ids[1]], positions_[ids[2]]};
     for (std::size_t i = 0; i < newIds_.size(); ++i) {
       if (newBoxes_[i].overlaps(boxes_[u]) &&
-          trianglesIntersect(newCorners_[i], newIds_[i], corners, ids)) {
+          meshTrianglesIntersect(newCorners_[i], newIds_[i], corners, ids)) {
         return true;
       }
     }

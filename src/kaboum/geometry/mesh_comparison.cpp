@@ -100,32 +100,10 @@ std::size_t countSelfIntersections(const TriangleMesh& mesh, const TriangleBvh& 
         a0.cwiseMin(a1).cwiseMin(a2), a0.cwiseMax(a1).cwiseMax(a2), [&](std::uint32_t j) {
           if (j <= i) return true;  // each pair once
           const Triangle& second = mesh.triangles[j];
-          int shared = 0;
-          std::size_t sharedInFirst = 0, sharedInSecond = 0;
-          for (std::size_t k = 0; k < 3; ++k) {
-            for (std::size_t l = 0; l < 3; ++l) {
-              if (first[k] == second[l]) {
-                ++shared;
-                sharedInFirst = k;
-                sharedInSecond = l;
-              }
-            }
-          }
-          const Vec3 &b0 = mesh.vertices[second[0]], &b1 = mesh.vertices[second[1]],
-                     &b2 = mesh.vertices[second[2]];
-          bool meet = false;
-          if (shared == 0) {
-            meet = trianglesIntersect(a0, a1, a2, b0, b1, b2);
-          } else if (shared == 1) {
-            const auto corner = [&](const Triangle& tri, std::size_t start,
-                                    std::size_t k) -> const Vec3& {
-              return mesh.vertices[tri[(start + k) % 3]];
-            };
-            meet = trianglesMeetBesideSharedVertex(
-                corner(first, sharedInFirst, 0), corner(first, sharedInFirst, 1),
-                corner(first, sharedInFirst, 2), corner(second, sharedInSecond, 1),
-                corner(second, sharedInSecond, 2));
-          }
+          const std::array<Vec3, 3> firstCorners{a0, a1, a2};
+          const std::array<Vec3, 3> secondCorners{
+              mesh.vertices[second[0]], mesh.vertices[second[1]], mesh.vertices[second[2]]};
+          const bool meet = meshTrianglesIntersect(firstCorners, first, secondCorners, second);
           if (meet) ++laterPartners[i];
           return true;
         });

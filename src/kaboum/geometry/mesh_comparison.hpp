@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 
+#include "kaboum/geometry/bound_side.hpp"
 #include "kaboum/geometry/triangle_mesh.hpp"
 
 namespace kaboum {
@@ -23,8 +24,6 @@ struct HausdorffReport {
 // Throws InputError when either mesh has no triangles (or bad indices or coordinates).
 HausdorffReport measureHausdorff(const TriangleMesh& original, const TriangleMesh& result,
                                  std::size_t randomSamples, std::uint64_t seed);
-
-enum class BoundSide { Outer, Inner };
 
 struct ContainmentReport {
   // False when a mesh the check needs closed is not (the original for either side, the result for

@@ -194,6 +194,29 @@ bool trianglesMeetBesideSharedVertex(const Vec3& s, const Vec3& p1, const Vec3& 
   return segmentMeetsTriangle(p1, q1, s, p2, q2) || segmentMeetsTriangle(p2, q2, s, p1, q1);
 }
 
+bool meshTrianglesIntersect(const std::array<Vec3, 3>& t, const Triangle& tIds,
+                            const std::array<Vec3, 3>& u, const Triangle& uIds) {
+  int shared = 0;
+  int sharedInT = 0, sharedInU = 0;
+  for (int k = 0; k < 3; ++k) {
+    for (int l = 0; l < 3; ++l) {
+      if (tIds[k] == uIds[l]) {
+        ++shared;
+        sharedInT = k;
+        sharedInU = l;
+      }
+    }
+  }
+  if (shared == 0) return trianglesIntersect(t[0], t[1], t[2], u[0], u[1], u[2]);
+  if (shared > 1) return false;
+  const auto at = [](const std::array<Vec3, 3>& x, int start, int k) -> const Vec3& {
+    return x[(start + k) % 3];
+  };
+  return trianglesMeetBesideSharedVertex(at(t, sharedInT, 0), at(t, sharedInT, 1),
+                                         at(t, sharedInT, 2), at(u, sharedInU, 1),
+                                         at(u, sharedInU, 2));
+}
+
 TriangleBvh::TriangleBvh(const TriangleMesh& mesh) : vertices_(mesh.vertices) {
   const std::size_t count = mesh.triangles.size();
   if (count == 0) throw InputError("mesh has no triangles");

@@ -30,6 +30,12 @@ bool trianglesIntersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Ve
 bool trianglesMeetBesideSharedVertex(const Vec3& s, const Vec3& p1, const Vec3& q1, const Vec3& p2,
                                      const Vec3& q2);
 
+// Mesh triangles t and u, given by corner positions and vertex ids, meet somewhere other than at
+// the vertices they share. Triangles sharing an edge count as not meeting (a fold across a shared
+// edge is an orientation defect, caught by normal checks instead).
+bool meshTrianglesIntersect(const std::array<Vec3, 3>& t, const Triangle& tIds,
+                            const std::array<Vec3, 3>& u, const Triangle& uIds);
+
 // Binned-SAH BVH over a copy of the mesh's vertices and triangles. Build O(n log n); queries are
 // const and thread-safe and allocate nothing. Throws InputError for a mesh without triangles, with
 // an index out of range or with a non-finite coordinate.
