@@ -326,6 +326,7 @@ TriangleMesh readPly(const std::string& path, std::string_view bytes) {
       }
       roles[*list] = element.name == "face" ? kFace : kStrip;
     }
+    if (element.properties.empty()) continue;  // nothing stored, whatever the count
     for (std::size_t instance = 0; instance < element.count; ++instance) {
       values.enter(element, instance);
       Vec3 p = Vec3::Zero();

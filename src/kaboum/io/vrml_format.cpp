@@ -184,6 +184,8 @@ class VrmlParser {
     const TextLocation at = text_.wordLocation();
     const std::string typeName(type);
     expect("{", typeName);
+    if (depth_ == kMaxDepth) text_.fail(at, "nodes nested too deeply");
+    const NestingGuard nested(depth_);
     if (typeName == "Transform" || typeName == "Group" || typeName == "Collision" ||
         typeName == "Anchor") {
       return group();
@@ -472,6 +474,17 @@ class VrmlParser {
       }
     }
   }
+
+  // Bounds the recursion of nested nodes, so hostile input cannot overflow the stack.
+  static constexpr int kMaxDepth = 1000;
+  struct NestingGuard {
+    explicit NestingGuard(int& depth) : counter_(++depth) {}
+    ~NestingGuard() { --counter_; }
+    NestingGuard(const NestingGuard&) = delete;
+    NestingGuard& operator=(const NestingGuard&) = delete;
+    int& counter_;
+  };
+  int depth_ = 0;
 
   const std::string path_;
   TextCursor text_;
