@@ -186,7 +186,7 @@ MeshAnalysis analyzeMesh(const TriangleMesh& mesh) {
   // Per component: signed volume about the box centre (exact for closed components, where the
   // reference point cancels) and whether every edge has exactly two triangles.
   const Vec3 centre = 0.5 * (result.boxMin + result.boxMax);
-  std::vector<double> componentVolume(triangleCount, 0.0);
+  std::vector<double> componentVolume(triangleCount, 0.0);  // six times the volume until the end
   std::vector<char> componentOpen(triangleCount, 0);
   for (std::uint32_t t = 0; t < triangleCount; ++t) {
     const Triangle& tri = mesh.triangles[t];
@@ -194,7 +194,7 @@ MeshAnalysis analyzeMesh(const TriangleMesh& mesh) {
     const std::uint32_t root = components.find(t);
     const Vec3 p = mesh.vertices[tri[0]] - centre, q = mesh.vertices[tri[1]] - centre,
                r = mesh.vertices[tri[2]] - centre;
-    componentVolume[root] += p.dot(q.cross(r)) / 6.0;
+    componentVolume[root] += p.dot(q.cross(r));
     componentOpen[root] |= triangleOpen[t];
   }
   std::size_t closedComponents = 0;
@@ -202,10 +202,11 @@ MeshAnalysis analyzeMesh(const TriangleMesh& mesh) {
   for (std::uint32_t t = 0; t < triangleCount; ++t) {
     if (hasRepeatedIndex(mesh.triangles[t]) || components.find(t) != t) continue;
     ++result.components;
-    result.volume += componentVolume[t];
+    const double volume = componentVolume[t] / 6.0;
+    result.volume += volume;
     if (!componentOpen[t]) {
       ++closedComponents;
-      closedAllPositive = closedAllPositive && componentVolume[t] > 0.0;
+      closedAllPositive = closedAllPositive && volume > 0.0;
     }
   }
 
