@@ -208,10 +208,10 @@ TEST(VrmlBadInput, MalformedFilesGiveLocatedErrors) {
       "deep.wrl",
       [] {
         std::string nested;
-        for (int i = 0; i < 1200; ++i) nested += "Group { children [\n";
+        for (int i = 0; i < 300; ++i) nested += "Group { children [\n";
         return nested;
       }(),
-      ":1002:1", "nodes nested too deeply");
+      ":202:1", "nodes nested too deeply");
   expectReadError(dir.write("v1.wrl", "#VRML V1.0 ascii\nSeparator { }\n"),
                   dir.file("v1.wrl") + ":1:1", "VRML 1.0 is not supported");
   expectReadError(dir.write("plain.wrl", "Group { }\n"), dir.file("plain.wrl") + ":1:1",
@@ -224,6 +224,13 @@ TEST(VrmlBadInput, InlineCycleAndErrorsInsideInlinedFiles) {
   dir.write("b.wrl", std::string(kHeader) + "Group { children Inline { url \"a.wrl\" } }\n");
   expectReadError(dir.file("a.wrl"), dir.file("b.wrl") + ":2:31",
                   "Inline cycle: 'a.wrl' includes itself");
+  // Nesting counts across inlined files: 150 levels here and 50 more in the inlined file.
+  std::string nested;
+  for (int i = 0; i < 150; ++i) nested += "Group { children [\n";
+  dir.write("deep-outer.wrl", kHeader + nested + "Inline { url \"deep-inner.wrl\" }\n");
+  dir.write("deep-inner.wrl", kHeader + nested);
+  expectReadError(dir.file("deep-outer.wrl"), dir.file("deep-inner.wrl") + ":51:1",
+                  "nodes nested too deeply");
   dir.write("outer.wrl", std::string(kHeader) + "Inline { url \"inner.wrl\" }\n");
   dir.write("inner.wrl", std::string(kHeader) + "\nShape { geometry Cone { } }\n");
   expectReadError(dir.file("outer.wrl"), dir.file("inner.wrl") + ":3:18",

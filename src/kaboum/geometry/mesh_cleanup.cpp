@@ -27,24 +27,25 @@ std::uint64_t combine(std::uint64_t x, std::uint64_t y, std::uint64_t z) {
   return mix(x ^ mix(y ^ mix(z)));
 }
 
-// Open-addressing table from a 64-bit key to the newest kept vertex with that key; older ones
-// with the same key are chained through `next`. Sized once, never rehashed.
+// Open-addressing table from a 64-bit key (already well mixed) to the newest kept vertex with that
+// key; older ones with the same key are chained through `next`. The table doubles when half full,
+// so it stays as small (and cache-friendly) as the number of distinct keys allows.
 class KeyChains {
  public:
-  explicit KeyChains(std::size_t entries)
-      : slots_(std::bit_ceil(2 * entries + 2)), mask_(slots_.size() - 1), next_(entries, kNone) {}
+  explicit KeyChains(std::size_t vertices) : slots_(1024), next_(vertices, kNone) {}
 
-  std::uint32_t head(std::uint64_t key) const {
-    for (std::size_t i = mix(key) & mask_;; i = (i + 1) & mask_) {
-      if (slots_[i].head == kNone) return kNone;
-      if (slots_[i].key == key) return slots_[i].head;
-    }
-  }
+  std::uint32_t head(std::uint64_t key) const { return slots_[find(key)].head; }
   std::uint32_t next(std::uint32_t vertex) const { return next_[vertex]; }
 
   void insert(std::uint64_t key, std::uint32_t vertex) {
-    std::size_t i = mix(key) & mask_;
-    while (slots_[i].head != kNone && slots_[i].key != key) i = (i + 1) & mask_;
+    std::size_t i = find(key);
+    if (slots_[i].head == kNone) {
+      if (2 * (used_ + 1) > slots_.size()) {
+        grow();
+        i = find(key);
+      }
+      ++used_;
+    }
     next_[vertex] = slots_[i].head;
     slots_[i] = {key, vertex};
   }
@@ -54,8 +55,25 @@ class KeyChains {
     std::uint64_t key = 0;
     std::uint32_t head = kNone;
   };
+
+  // The slot holding `key`, or the empty slot where it would go.
+  std::size_t find(std::uint64_t key) const {
+    const std::size_t mask = slots_.size() - 1;
+    std::size_t i = key & mask;
+    while (slots_[i].head != kNone && slots_[i].key != key) i = (i + 1) & mask;
+    return i;
+  }
+
+  void grow() {
+    std::vector<Slot> old(2 * slots_.size());
+    old.swap(slots_);
+    for (const Slot& slot : old) {
+      if (slot.head != kNone) slots_[find(slot.key)] = slot;
+    }
+  }
+
   std::vector<Slot> slots_;
-  std::size_t mask_;
+  std::size_t used_ = 0;
   std::vector<std::uint32_t> next_;
 };
 

@@ -105,11 +105,12 @@ std::shared_ptr<VrmlNode> boxFaceSet(const Vec3& size) {
   return box;
 }
 
-// Parsed files by canonical path (a file inlined twice is read once) and the chain of files being
-// read (to reject Inline cycles).
+// Parsed files by canonical path (a file inlined twice is read once), the chain of files being
+// read (to reject Inline cycles) and the node nesting depth across them.
 struct InlineContext {
   std::map<std::filesystem::path, NodePtr> parsed;
   std::vector<std::filesystem::path> reading;
+  int depth = 0;
 };
 
 // Parses `file` (shown as `path` in errors), or returns it from the cache.
@@ -184,8 +185,8 @@ class VrmlParser {
     const TextLocation at = text_.wordLocation();
     const std::string typeName(type);
     expect("{", typeName);
-    if (depth_ == kMaxDepth) text_.fail(at, "nodes nested too deeply");
-    const NestingGuard nested(depth_);
+    if (context_.depth == kMaxDepth) text_.fail(at, "nodes nested too deeply");
+    const NestingGuard nested(context_.depth);
     if (typeName == "Transform" || typeName == "Group" || typeName == "Collision" ||
         typeName == "Anchor") {
       return group();
@@ -475,8 +476,9 @@ class VrmlParser {
     }
   }
 
-  // Bounds the recursion of nested nodes, so hostile input cannot overflow the stack.
-  static constexpr int kMaxDepth = 1000;
+  // Bounds the recursion of nested nodes (also through Inline), so hostile input cannot overflow
+  // the stack; real scenes nest a few dozen levels at most.
+  static constexpr int kMaxDepth = 200;
   struct NestingGuard {
     explicit NestingGuard(int& depth) : counter_(++depth) {}
     ~NestingGuard() { --counter_; }
@@ -484,7 +486,6 @@ class VrmlParser {
     NestingGuard& operator=(const NestingGuard&) = delete;
     int& counter_;
   };
-  int depth_ = 0;
 
   const std::string path_;
   TextCursor text_;
