@@ -115,10 +115,6 @@ std::uint32_t findNear(const KeyChains& chains, const std::vector<Vec3>& kept, c
   return best;
 }
 
-bool hasRepeatedIndex(const Triangle& t) {
-  return t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
-}
-
 // True when triangle `n` has the directed edge a->b.
 bool hasDirectedEdge(const Triangle& n, std::uint32_t a, std::uint32_t b) {
   for (int k = 0; k < 3; ++k) {
@@ -189,7 +185,7 @@ bool repairOrientation(TriangleMesh& mesh) {
   bool allRepaired = true;
 
   for (std::uint32_t seed = 0; seed < triangleCount; ++seed) {
-    if (visited[seed] || hasRepeatedIndex(mesh.triangles[seed])) continue;
+    if (visited[seed] || neighbors.across[3 * seed] == EdgeNeighbors::kNoEdge) continue;
     const std::size_t begin = order.size();
     order.push_back(seed);
     visited[seed] = 1;

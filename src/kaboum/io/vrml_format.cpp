@@ -508,13 +508,17 @@ NodePtr parseVrmlFile(const std::string& path, const std::filesystem::path& file
 
 // Appends the faces below `node`, placed by `world`. Faces flip when ccw is FALSE or the transform
 // mirrors (negative determinant), so they stay counter-clockwise seen from outside.
-void appendGeometry(const VrmlNode& node, const Affine& world, TriangleMesh& mesh) {
+void appendGeometry(const VrmlNode& node, const Affine& world, const std::string& path,
+                    TriangleMesh& mesh) {
   if (node.kind == VrmlNode::Kind::Group) {
     const Affine placed = world * node.transform;
-    for (const NodePtr& child : node.children) appendGeometry(*child, placed, mesh);
+    for (const NodePtr& child : node.children) appendGeometry(*child, placed, path, mesh);
     return;
   }
   if (node.kind != VrmlNode::Kind::FaceSet || !node.coord || node.faces.empty()) return;
+  if (mesh.vertices.size() + node.coord->points.size() > 0xffffffffULL) {
+    throw InputError(locate(path, "more than 2^32 vertices once USE and Inline are expanded"));
+  }
   const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
   for (const Vec3& p : node.coord->points) mesh.vertices.push_back(world * p);
   const bool flip = !node.ccw != (world.linear().determinant() < 0.0);
@@ -532,7 +536,7 @@ TriangleMesh readVrml(const std::string& path) {
   std::error_code error;
   const NodePtr root = parseVrmlFile(path, std::filesystem::weakly_canonical(path, error), context);
   TriangleMesh mesh;
-  appendGeometry(*root, Affine::Identity(), mesh);
+  appendGeometry(*root, Affine::Identity(), path, mesh);
   return mesh;
 }
 
