@@ -1,0 +1,81 @@
+// Shared helpers of the io tests: a scratch directory, data paths, error capture, mesh equality.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "kaboum/core/error.hpp"
+#include "kaboum/geometry/triangle_mesh.hpp"
+#include "kaboum/io/mesh_io.hpp"
+
+namespace kaboum::test {
+
+// A fresh directory under the system temp directory, removed with everything in it at scope end.
+class ScratchDir {
+ public:
+  ScratchDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = std::filesystem::temp_directory_path() /
+            ("kaboum-" + std::string(info->test_suite_name()) + "-" + info->name() + "-" +
+             std::to_string(::getpid()));
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ~ScratchDir() { std::filesystem::remove_all(path_); }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+
+  // Path of `name` inside the directory.
+  std::string file(const std::string& name) const { return (path_ / name).string(); }
+  // Writes `contents` (bytes as given) to `name` and returns its path.
+  std::string write(const std::string& name, const std::string& contents) const {
+    const std::string path = file(name);
+    std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+    std::ofstream(path, std::ios::binary) << contents;
+    return path;
+  }
+
+ private:
+  std::filesystem::path path_;
+};
+
+inline std::string meshData(const std::string& name) {
+  return std::string(KABOUM_DATA_DIR) + "/meshes/" + name;
+}
+
+// The message readMesh(path) throws as InputError, or "" when it reads the mesh.
+inline std::string readError(const std::string& path) {
+  try {
+    readMesh(path);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// readMesh(path) must fail with one line that starts with `where` (the file, with line:col where
+// it applies) and contains `what`.
+inline void expectReadError(const std::string& path, const std::string& where,
+                            const std::string& what) {
+  const std::string message = readError(path);
+  EXPECT_EQ(message.rfind(where + ": ", 0), 0u) << message;
+  EXPECT_NE(message.find(what), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
+inline void expectSameMesh(const TriangleMesh& actual, const TriangleMesh& expected) {
+  ASSERT_EQ(actual.vertices.size(), expected.vertices.size());
+  ASSERT_EQ(actual.triangles.size(), expected.triangles.size());
+  for (std::size_t i = 0; i < expected.vertices.size(); ++i) {
+    ASSERT_EQ(actual.vertices[i], expected.vertices[i]) << "vertex " << i;
+  }
+  for (std::size_t t = 0; t < expected.triangles.size(); ++t) {
+    ASSERT_EQ(actual.triangles[t], expected.triangles[t]) << "triangle " << t;
+  }
+}
+
+}  // namespace kaboum::test
