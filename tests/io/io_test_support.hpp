@@ -8,40 +8,12 @@
 #include <fstream>
 #include <string>
 
+#include "../support/test_support.hpp"
 #include "kaboum/core/error.hpp"
 #include "kaboum/geometry/triangle_mesh.hpp"
 #include "kaboum/io/mesh_io.hpp"
 
 namespace kaboum::test {
-
-// A fresh directory under the system temp directory, removed with everything in it at scope end.
-class ScratchDir {
- public:
-  ScratchDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = std::filesystem::temp_directory_path() /
-            ("kaboum-" + std::string(info->test_suite_name()) + "-" + info->name() + "-" +
-             std::to_string(::getpid()));
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
-  }
-  ~ScratchDir() { std::filesystem::remove_all(path_); }
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-
-  // Path of `name` inside the directory.
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-  // Writes `contents` (bytes as given) to `name` and returns its path.
-  std::string write(const std::string& name, const std::string& contents) const {
-    const std::string path = file(name);
-    std::filesystem::create_directories(std::filesystem::path(path).parent_path());
-    std::ofstream(path, std::ios::binary) << contents;
-    return path;
-  }
-
- private:
-  std::filesystem::path path_;
-};
 
 inline std::string meshData(const std::string& name) {
   return std::string(KABOUM_DATA_DIR) + "/meshes/" + name;

@@ -15,26 +15,8 @@ namespace {
 using test::meshData;
 using test::ScratchDir;
 
-struct CliResult {
-  int exitCode = -1;
-  std::string out, err;
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-CliResult runCli(const ScratchDir& dir, const std::string& arguments) {
-  const std::string command = std::string("'") + KABOUM_CLI + "' " + arguments + " >'" +
-                              dir.file("out.txt") + "' 2>'" + dir.file("err.txt") + "'";
-  const int status = std::system(command.c_str());
-  CliResult result;
-  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.out = slurp(dir.file("out.txt"));
-  result.err = slurp(dir.file("err.txt"));
-  return result;
-}
+using test::CliResult;
+using test::runCli;
 
 TEST(InfoCli, JsonReportsTheAnalysis) {
   ScratchDir dir;

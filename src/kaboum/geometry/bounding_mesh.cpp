@@ -636,4 +636,52 @@ BoundingMeshResult simplifyBounding(const TriangleMesh& input, const BoundingMes
   return BoundingMeshSimplifier(input, options).run();
 }
 
+BoundingMeshResult simplifyBoundingWithin(const TriangleMesh& input, BoundingMeshOptions options,
+                                          double epsilon, std::size_t samples,
+                                          HausdorffReport& measured, int maxRuns) {
+  int runs = 0;
+  const auto attempt = [&](double scale, HausdorffReport& report) {
+    ++runs;
+    options.maxError = scale * epsilon;
+    BoundingMeshResult result = simplifyBounding(input, options);
+    report = measureHausdorff(input, result.mesh, samples, 1);
+    return result;
+  };
+  const auto within = [&](const HausdorffReport& r) {
+    return std::max(r.originalToResult.max, r.resultToOriginal.max) <= epsilon;
+  };
+  BoundingMeshResult best;
+  bool haveBest = false;
+  double fits = 0.0, fails = 0.0;  // largest scale known to fit, smallest known to fail (0: none)
+  double scale = 1.0;
+  while (runs < maxRuns) {
+    HausdorffReport report;
+    BoundingMeshResult result = attempt(scale, report);
+    const bool ok = within(report);
+    if (ok) {
+      fits = scale;
+      best = std::move(result);
+      measured = report;
+      haveBest = true;
+      if (best.stats.stopReason == "vertex target reached") break;  // cannot go further
+    } else {
+      fails = scale;
+    }
+    if (fails == 0.0) {
+      scale *= 2.0;  // nothing failed yet: widen
+    } else if (fits == 0.0) {
+      scale *= 0.5;  // nothing fitted yet: narrow
+    } else {
+      if (fails / fits < 1.1) break;
+      scale = std::sqrt(fits * fails);
+    }
+  }
+  if (!haveBest) best = attempt(0.0, measured);  // nothing fitted: no contraction at all
+  if (best.stats.stopReason != "vertex target reached") {
+    best.stats.stopReason = "largest simplification found within the distance limit";
+  }
+  best.stats.runs = runs;
+  return best;
+}
+
 }  // namespace kaboum

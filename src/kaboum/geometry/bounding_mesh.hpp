@@ -8,6 +8,7 @@
 #include <string>
 
 #include "kaboum/geometry/bound_side.hpp"
+#include "kaboum/geometry/mesh_comparison.hpp"
 #include "kaboum/geometry/quadric.hpp"
 #include "kaboum/geometry/triangle_mesh.hpp"
 
@@ -39,6 +40,7 @@ struct BoundingMeshStats {
   std::size_t rejectedCrossing = 0;  // the new triangles would have crossed the mesh
   double quadricError = 0.0;  // largest quadric error (as a distance) of an executed contraction
   double seconds = 0.0;
+  int runs = 1;            // runs of Algorithm 2 (more than one when searching for a distance)
   std::string stopReason;  // "vertex target reached", or why no further contraction was valid
 };
 
@@ -54,5 +56,15 @@ struct BoundingMeshResult {
 // mesh. Throws InputError if
 // the orientation is inconsistent.
 BoundingMeshResult simplifyBounding(const TriangleMesh& input, const BoundingMeshOptions& options);
+
+// Simplifies as far as the measured Hausdorff distance allows: the result's distance to `input`, in
+// both directions on dense samples (every vertex, edge midpoint and `samples` random points), stays
+// within `epsilon`. The quadric error of Algorithm 2 only estimates that distance (it overestimates
+// it on smooth meshes), so the quadric-error limit is searched: ε first, then bisection on a
+// multiple of ε, at most `maxRuns` runs of Algorithm 2. `options.targetVertices` still applies;
+// `options.maxError` is ignored. `measured` receives the distances of the returned result.
+BoundingMeshResult simplifyBoundingWithin(const TriangleMesh& input, BoundingMeshOptions options,
+                                          double epsilon, std::size_t samples,
+                                          HausdorffReport& measured, int maxRuns = 7);
 
 }  // namespace kaboum

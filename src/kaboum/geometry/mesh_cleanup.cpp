@@ -242,4 +242,18 @@ bool repairOrientation(TriangleMesh& mesh) {
   return allRepaired;
 }
 
+bool orientOutward(TriangleMesh& mesh, bool& changed) {
+  changed = false;
+  const MeshAnalysis before = analyzeMesh(mesh);
+  if (!before.consistentlyOriented || (before.closed && !before.outwardOriented)) {
+    if (!repairOrientation(mesh)) return false;
+    changed = true;
+  }
+  if (!before.closed && analyzeMesh(mesh).volume < 0.0) {
+    for (Triangle& t : mesh.triangles) std::swap(t[1], t[2]);
+    changed = true;
+  }
+  return true;
+}
+
 }  // namespace kaboum

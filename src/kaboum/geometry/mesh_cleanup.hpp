@@ -20,4 +20,10 @@ void removeUnreferencedVertices(TriangleMesh& mesh);
 // (non-orientable / touches a non-manifold edge), leaving that component unchanged.
 bool repairOrientation(TriangleMesh& mesh);
 
+// Prepares a mesh for single-sided approximation: consistent orientation where it is not (via
+// repairOrientation), closed components outward, and an open mesh flipped as a whole when its
+// signed volume (measured as if its holes were capped) is negative. Returns false when the mesh
+// cannot be oriented consistently; sets `changed` when triangles were flipped.
+bool orientOutward(TriangleMesh& mesh, bool& changed);
+
 }  // namespace kaboum

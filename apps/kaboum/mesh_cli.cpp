@@ -1,0 +1,56 @@
+#include "mesh_cli.hpp"
+
+#include <fmt/format.h>
+
+#include "kaboum/core/error.hpp"
+#include "kaboum/geometry/mesh_analysis.hpp"
+#include "kaboum/geometry/mesh_cleanup.hpp"
+#include "kaboum/io/mesh_io.hpp"
+
+namespace kaboum::cli {
+
+void addSideFlags(CLI::App& command, BoundSide& side) {
+  auto* outer = command.add_flag_callback(
+      "--outer", [&side] { side = BoundSide::Outer; },
+      "Outer bound: the result encloses the input (default)");
+  auto* inner = command.add_flag_callback(
+      "--inner", [&side] { side = BoundSide::Inner; },
+      "Inner bound: the input encloses the result");
+  outer->excludes(inner);
+}
+
+LoadedMesh loadOrientedMesh(const std::string& path) {
+  LoadedMesh loaded;
+  loaded.mesh = readMesh(path);
+  if (!orientOutward(loaded.mesh, loaded.orientationRepaired)) {
+    throw InputError(locate(path,
+                            "cannot be oriented consistently (non-orientable or "
+                            "non-manifold surface)"));
+  }
+  loaded.closed = analyzeMesh(loaded.mesh).closed;
+  return loaded;
+}
+
+const char* sideName(BoundSide side) {
+  return side == BoundSide::Outer ? "outer" : "inner";
+}
+
+nlohmann::json toJson(const HausdorffReport& report) {
+  const auto stats = [&](const DistanceStats& s) {
+    return nlohmann::json{{"min", s.min},
+                          {"mean", s.mean},
+                          {"max", s.max},
+                          {"max_percent_of_diagonal", 100.0 * s.max / report.diagonal}};
+  };
+  return {{"original_to_result", stats(report.originalToResult)},
+          {"result_to_original", stats(report.resultToOriginal)},
+          {"diagonal", report.diagonal},
+          {"samples", report.samples}};
+}
+
+std::string describe(const DistanceStats& stats, double diagonal) {
+  return fmt::format("max {:.4g} ({:.3f}% of diagonal), mean {:.4g}, min {:.4g}", stats.max,
+                     100.0 * stats.max / diagonal, stats.mean, stats.min);
+}
+
+}  // namespace kaboum::cli

@@ -1,0 +1,33 @@
+// Pieces shared by the mesh verbs (bound, check): side flags, loading with orientation repair,
+// Hausdorff reporting in text and JSON.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "kaboum/geometry/bound_side.hpp"
+#include "kaboum/geometry/mesh_comparison.hpp"
+#include "kaboum/geometry/triangle_mesh.hpp"
+
+namespace kaboum::cli {
+
+// Adds mutually exclusive --outer (default) / --inner flags that set `side`.
+void addSideFlags(CLI::App& command, BoundSide& side);
+
+struct LoadedMesh {
+  TriangleMesh mesh;
+  bool closed = false;
+  bool orientationRepaired = false;
+};
+
+// Reads a mesh and makes its orientation consistent and outward; InputError naming `path` if the
+// mesh cannot be oriented (non-orientable or non-manifold where orientation is ambiguous).
+LoadedMesh loadOrientedMesh(const std::string& path);
+
+const char* sideName(BoundSide side);
+nlohmann::json toJson(const HausdorffReport& report);
+// "max 1.23e-03 (0.10% of diagonal), mean ..., min ..."
+std::string describe(const DistanceStats& stats, double diagonal);
+
+}  // namespace kaboum::cli

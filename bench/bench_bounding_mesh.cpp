@@ -1,0 +1,97 @@
+// Bounding mesh throughput and peak memory versus input size (issue 2's scaling table). Inputs are
+// real meshes, enlarged by Loop subdivision. Run: build/release/bench/bench_bounding_mesh
+#include <benchmark/benchmark.h>
+#include <malloc.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <filesystem>
+#include <new>
+
+#include "kaboum/geometry/bounding_mesh.hpp"
+#include "kaboum/geometry/subdivision.hpp"
+#include "kaboum/io/mesh_io.hpp"
+
+// GCC cannot see that the replaced operator new below pairs with the replaced delete.
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+
+// Heap accounting: current and peak bytes live on the heap, for the memory-per-vertex counter.
+namespace {
+std::atomic<std::size_t> liveBytes{0}, peakBytes{0};
+void* track(void* p) {
+  if (p == nullptr) throw std::bad_alloc();
+  const std::size_t now = liveBytes += malloc_usable_size(p);
+  std::size_t peak = peakBytes.load();
+  while (now > peak && !peakBytes.compare_exchange_weak(peak, now)) {
+  }
+  return p;
+}
+}  // namespace
+void* operator new(std::size_t size) {
+  return track(std::malloc(size));
+}
+void* operator new[](std::size_t size) {
+  return track(std::malloc(size));
+}
+void operator delete(void* p) noexcept {
+  if (p != nullptr) liveBytes -= malloc_usable_size(p);
+  std::free(p);
+}
+void operator delete[](void* p) noexcept {
+  operator delete(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+  operator delete(p);
+}
+void operator delete[](void* p, std::size_t) noexcept {
+  operator delete(p);
+}
+
+namespace {
+
+std::string meshPath(const std::string& name) {
+  const std::filesystem::path shared =
+      std::filesystem::path(KABOUM_DATA_DIR) / "../../shared/meshes";
+  if (std::filesystem::exists(shared / name)) return (shared / name).string();
+  return (std::filesystem::path(KABOUM_DATA_DIR) / "meshes" / name).string();
+}
+
+// Loop-subdivided copies of spot.obj: 2.9k, 11.7k, 46.8k, 187k and 749k vertices.
+const kaboum::TriangleMesh& spot(int level) {
+  static std::vector<kaboum::TriangleMesh> levels;
+  if (levels.empty()) levels.push_back(kaboum::readMesh(meshPath("spot.obj")));
+  while (static_cast<int>(levels.size()) <= level) {
+    levels.push_back(kaboum::subdivideLoop(levels.back()));
+  }
+  return levels[static_cast<std::size_t>(level)];
+}
+
+void BoundOuterTenPercent(benchmark::State& state) {
+  const kaboum::TriangleMesh& mesh = spot(static_cast<int>(state.range(0)));
+  kaboum::BoundingMeshOptions options;
+  options.targetVertices = mesh.vertices.size() / 10;
+  std::size_t contractions = 0;
+  double seconds = 0.0;
+  for (auto _ : state) {
+    const std::size_t before = liveBytes.load();
+    peakBytes = before;
+    const kaboum::BoundingMeshResult result = kaboum::simplifyBounding(mesh, options);
+    state.counters["peak_bytes_per_input_vertex"] =
+        static_cast<double>(peakBytes.load() - before) / static_cast<double>(mesh.vertices.size());
+    contractions = result.stats.contractions;
+    seconds = result.stats.seconds;
+    benchmark::DoNotOptimize(result.mesh.triangles.data());
+  }
+  state.counters["input_vertices"] = static_cast<double>(mesh.vertices.size());
+  state.counters["contractions_per_second"] = static_cast<double>(contractions) / seconds;
+}
+BENCHMARK(BoundOuterTenPercent)
+    ->DenseRange(0, 4)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1)
+    ->Repetitions(3)
+    ->ReportAggregatesOnly(true);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,147 @@
+// `kaboum bound` and `kaboum check` as users run them: outputs, JSON fields, exit codes, and one
+// clear line with exit code 2 for every class of bad input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "../support/test_support.hpp"
+#include "kaboum/io/mesh_io.hpp"
+
+namespace kaboum {
+namespace {
+
+using test::CliResult;
+using test::runCli;
+using test::ScratchDir;
+
+std::string data(const std::string& name) {
+  return "'" + std::string(KABOUM_DATA_DIR) + "/meshes/" + name + "'";
+}
+
+int lineCount(const std::string& text) {
+  return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+}
+
+TEST(BoundCli, JsonReportsTheRunAndTheWrittenMeshMatchesIt) {
+  ScratchDir dir;
+  const std::string out = dir.file("wrist-outer.obj");
+  const CliResult r = runCli(
+      dir, "bound " + data("kr5-wrist.stl") + " -o '" + out + "' --ratio 0.3 --json --quiet");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(r.err, "");  // --quiet: no progress
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  for (const char* key : {"input_vertices", "output_vertices", "contractions", "seconds",
+                          "contractions_per_second", "stop_reason", "hausdorff"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  const TriangleMesh written = readMesh(out);
+  EXPECT_EQ(written.vertices.size(), j["output_vertices"].get<std::size_t>());
+  EXPECT_EQ(j["input_vertices"].get<std::size_t>() - j["contractions"].get<std::size_t>(),
+            j["output_vertices"].get<std::size_t>());
+  EXPECT_EQ(j["output_vertices"].get<std::size_t>(),
+            static_cast<std::size_t>(std::ceil(0.3 * j["input_vertices"].get<double>())));
+  EXPECT_EQ(j["side"], "outer");
+}
+
+TEST(BoundCli, OuterAndInnerResultsAreVerifiedByCheck) {
+  ScratchDir dir;
+  for (const std::string side : {"outer", "inner"}) {
+    const std::string out = dir.file("spot-" + side + ".ply");
+    const CliResult bound = runCli(
+        dir, "bound " + data("spot.obj") + " -o '" + out + "' --" + side + " --vertices 400 -q");
+    ASSERT_EQ(bound.exitCode, 0) << bound.err;
+    const CliResult check =
+        runCli(dir, "check " + data("spot.obj") + " '" + out + "' --" + side + " --json");
+    ASSERT_EQ(check.exitCode, 0) << check.out << check.err;
+    const nlohmann::json j = nlohmann::json::parse(check.out);
+    EXPECT_TRUE(j["verified"].get<bool>());
+    EXPECT_EQ(j["violations"], 0);
+    EXPECT_GT(j["samples_checked"].get<std::size_t>(), 1000u);
+  }
+  // The outer result is not an inner bound: check must say so with exit code 1.
+  const CliResult wrong =
+      runCli(dir, "check " + data("spot.obj") + " '" + dir.file("spot-outer.ply") + "' --inner");
+  EXPECT_EQ(wrong.exitCode, 1);
+  EXPECT_NE(wrong.out.find("VIOLATED"), std::string::npos) << wrong.out;
+}
+
+TEST(BoundCli, EpsilonIsADistanceInPercentOfTheDiagonal) {
+  ScratchDir dir;
+  const CliResult r = runCli(dir, "bound " + data("fandisk.obj") + " -o '" + dir.file("f.obj") +
+                                      "' --epsilon 1% --json -q");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_LE(j["hausdorff"]["original_to_result"]["max_percent_of_diagonal"].get<double>(), 1.0);
+  EXPECT_LE(j["hausdorff"]["result_to_original"]["max_percent_of_diagonal"].get<double>(), 1.0);
+  EXPECT_LT(j["output_vertices"].get<int>() * 10, j["input_vertices"].get<int>());
+}
+
+TEST(BoundCli, OpenInputsAreSimplifiedAndCheckSaysContainmentIsUndefined) {
+  ScratchDir dir;
+  const std::string out = dir.file("base.obj");
+  const CliResult bound =
+      runCli(dir, "bound " + data("kr5-base-link.stl") + " -o '" + out + "' --ratio 0.5 -q");
+  ASSERT_EQ(bound.exitCode, 0) << bound.err;
+  EXPECT_NE(bound.out.find("containment is only defined for closed meshes"), std::string::npos);
+  const CliResult check = runCli(dir, "check " + data("kr5-base-link.stl") + " '" + out + "'");
+  EXPECT_EQ(check.exitCode, 0);
+  EXPECT_NE(check.out.find("not defined"), std::string::npos) << check.out;
+}
+
+TEST(BoundCli, EveryVerbHasHelp) {
+  ScratchDir dir;
+  for (const std::string verb : {"bound", "check"}) {
+    const CliResult r = runCli(dir, verb + " --help");
+    EXPECT_EQ(r.exitCode, 0);
+    EXPECT_NE(r.out.find("--json"), std::string::npos) << verb;
+  }
+}
+
+// A Möbius strip: readable, but no consistent orientation exists.
+std::string writeMoebius(const ScratchDir& dir) {
+  std::ostringstream obj;
+  const int n = 12;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2.0 * M_PI * i / n;
+    for (const double s : {-0.3, 0.3}) {
+      obj << "v " << (1 + s * std::cos(t / 2)) * std::cos(t) << " "
+          << (1 + s * std::cos(t / 2)) * std::sin(t) << " " << s * std::sin(t / 2) << "\n";
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    const int a = 2 * i + 1, b = 2 * i + 2;
+    const int c = i + 1 < n ? a + 2 : 2, d = i + 1 < n ? b + 2 : 1;  // the strip joins twisted
+    obj << "f " << a << " " << b << " " << d << "\nf " << a << " " << d << " " << c << "\n";
+  }
+  return dir.write("moebius.obj", obj.str());
+}
+
+TEST(BoundCli, BadInputGivesOneLineAndExitCodeTwo) {
+  ScratchDir dir;
+  const std::string out = "-o '" + dir.file("out.obj") + "'";
+  const std::string cow = data("cow.obj");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"bound '" + dir.file("missing.obj") + "' " + out + " --ratio 0.5", "missing.obj"},
+      {"bound " + cow + " " + out, "give a target"},
+      {"bound " + cow + " " + out + " --ratio 2", "--ratio"},
+      {"bound " + cow + " " + out + " --ratio 0.5 --vertices 10", "--vertices"},
+      {"bound " + cow + " " + out + " --epsilon abc", "--epsilon"},
+      {"bound " + cow + " " + out + " --epsilon -1%", "--epsilon"},
+      {"bound " + cow + " -o '" + dir.file("out.xyz") + "' --ratio 0.5", "out.xyz"},
+      {"bound " + cow + " " + out + " --ratio 0.5 --cost volume", "--cost"},
+      {"bound '" + writeMoebius(dir) + "' " + out + " --ratio 0.5", "moebius.obj"},
+      {"check " + cow + " '" + dir.file("missing.obj") + "'", "missing.obj"},
+  };
+  for (const auto& [arguments, mention] : cases) {
+    const bool isBound = arguments.rfind("bound", 0) == 0;
+    const CliResult r = runCli(dir, arguments + (isBound ? " -q" : ""));
+    EXPECT_EQ(r.exitCode, 2) << arguments << "\n" << r.err;
+    EXPECT_EQ(lineCount(r.err), 1) << arguments << "\n" << r.err;
+    EXPECT_NE(r.err.find(mention), std::string::npos) << arguments << "\n" << r.err;
+  }
+}
+
+}  // namespace
+}  // namespace kaboum

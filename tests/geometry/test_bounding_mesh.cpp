@@ -1,0 +1,245 @@
+// Property tests of the bounding mesh algorithm on real meshes: containment (outer) and inclusion
+// (inner), manifold non-degenerate results, fixed borders on open meshes, and the defects measured
+// in the reference implementation.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include "kaboum/core/error.hpp"
+#include "kaboum/geometry/bounding_mesh.hpp"
+#include "kaboum/geometry/mesh_analysis.hpp"
+#include "kaboum/geometry/mesh_cleanup.hpp"
+#include "kaboum/geometry/mesh_comparison.hpp"
+#include "kaboum/geometry/test_shapes.hpp"
+#include "kaboum/io/mesh_io.hpp"
+
+namespace kaboum {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kRobots = "/usr/share/doc/dart/data/urdf";
+
+// Closed shared meshes shipped in data/meshes, and every KR5/WAM link from dart-doc.
+std::vector<fs::path> realMeshes() {
+  std::vector<fs::path> paths = {fs::path(KABOUM_DATA_DIR) / "meshes/cow.obj",
+                                 fs::path(KABOUM_DATA_DIR) / "meshes/spot.obj",
+                                 fs::path(KABOUM_DATA_DIR) / "meshes/fandisk.obj",
+                                 fs::path(KABOUM_DATA_DIR) / "meshes/rocker-arm.obj"};
+  for (const fs::path& dir : {kRobots / "KR5/meshes", kRobots / "wam/meshes/wam"}) {
+    for (const auto& entry : fs::directory_iterator(dir)) {
+      const std::string name = entry.path().filename().string();
+      if (entry.path().extension() == ".STL" && name.find("collision") == std::string::npos) {
+        paths.push_back(entry.path());
+      }
+    }
+  }
+  std::sort(paths.begin(), paths.end());
+  return paths;
+}
+
+TriangleMesh loadOriented(const fs::path& path) {
+  TriangleMesh mesh = readMesh(path.string());
+  bool changed = false;
+  EXPECT_TRUE(orientOutward(mesh, changed)) << path;
+  return mesh;
+}
+
+// The result keeps what the input has: edge-manifoldness, orientation, no degenerate faces, no
+// isolated vertices, and no more self-intersecting triangle pairs than the input.
+void expectWellFormed(const TriangleMesh& input, const TriangleMesh& result,
+                      const std::string& what) {
+  const MeshAnalysis a = analyzeMesh(result);
+  EXPECT_GT(result.triangles.size(), 0u) << what;
+  if (analyzeMesh(input).edgeManifold) {
+    EXPECT_TRUE(a.edgeManifold) << what;
+  }
+  EXPECT_LE(countSelfIntersections(result), countSelfIntersections(input)) << what;
+  EXPECT_TRUE(a.consistentlyOriented) << what;
+  EXPECT_EQ(a.degenerateTriangles, 0u) << what;
+  // No isolated vertices: every output vertex is used by a triangle.
+  std::vector<bool> used(result.vertices.size(), false);
+  for (const Triangle& t : result.triangles) {
+    for (std::uint32_t v : t) used[v] = true;
+  }
+  EXPECT_TRUE(std::all_of(used.begin(), used.end(), [](bool u) { return u; })) << what;
+}
+
+TEST(BoundingMesh, ClosedRealMeshesAreBoundedOnBothSidesAtSeveralTargets) {
+  int closedCount = 0;
+  for (const fs::path& path : realMeshes()) {
+    const TriangleMesh mesh = loadOriented(path);
+    const MeshAnalysis input = analyzeMesh(mesh);
+    if (!input.closed || !input.edgeManifold) continue;
+    ++closedCount;
+    for (const BoundSide side : {BoundSide::Outer, BoundSide::Inner}) {
+      for (const double ratio : {0.5, 0.1}) {
+        BoundingMeshOptions options;
+        options.side = side;
+        options.targetVertices =
+            static_cast<std::size_t>(ratio * static_cast<double>(mesh.vertices.size()));
+        const BoundingMeshResult result = simplifyBounding(mesh, options);
+        const std::string what = path.filename().string() +
+                                 (side == BoundSide::Outer ? " outer " : " inner ") +
+                                 std::to_string(ratio);
+        expectWellFormed(mesh, result.mesh, what);
+        const MeshAnalysis out = analyzeMesh(result.mesh);
+        EXPECT_TRUE(out.closed) << what;
+        EXPECT_EQ(out.components, input.components) << what;
+        EXPECT_LT(result.mesh.vertices.size(), mesh.vertices.size()) << what;
+        // Inner never silently produces an outer mesh, nor the reverse.
+        if (side == BoundSide::Outer) {
+          EXPECT_GE(out.volume, input.volume) << what;
+        } else {
+          EXPECT_LE(out.volume, input.volume) << what;
+        }
+        const ContainmentReport check = verifyContainment(mesh, result.mesh, side, 20000, 3);
+        EXPECT_TRUE(check.defined) << what;
+        EXPECT_EQ(check.violations, 0u) << what << " worst " << check.worstViolation;
+      }
+    }
+  }
+  EXPECT_GE(closedCount, 4);  // at least the four closed shared meshes
+}
+
+TEST(BoundingMesh, ReachesTheVertexTargetOnSmoothClosedMeshes) {
+  const TriangleMesh mesh = loadOriented(fs::path(KABOUM_DATA_DIR) / "meshes/spot.obj");
+  BoundingMeshOptions options;
+  options.targetVertices = 293;
+  const BoundingMeshResult result = simplifyBounding(mesh, options);
+  EXPECT_EQ(result.mesh.vertices.size(), 293u);
+  EXPECT_EQ(result.stats.stopReason, "vertex target reached");
+  EXPECT_EQ(result.stats.contractions, mesh.vertices.size() - 293);
+}
+
+TEST(BoundingMesh, OpenMeshesKeepTheirBordersAndContainmentIsReportedUndefined) {
+  int openCount = 0;
+  for (const fs::path& path : realMeshes()) {
+    const TriangleMesh mesh = loadOriented(path);
+    const MeshAnalysis input = analyzeMesh(mesh);
+    if (input.closed) continue;
+    ++openCount;
+    // Border edges of the input, as coordinate pairs.
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> edgeUse;
+    for (const Triangle& t : mesh.triangles) {
+      for (int k = 0; k < 3; ++k) {
+        edgeUse[std::minmax(t[k], t[(k + 1) % 3])]++;
+      }
+    }
+    BoundingMeshOptions options;
+    options.targetVertices = mesh.vertices.size() / 4;
+    const BoundingMeshResult result = simplifyBounding(mesh, options);
+    expectWellFormed(mesh, result.mesh, path.filename().string());
+    std::set<std::array<double, 6>> resultEdges;
+    for (const Triangle& t : result.mesh.triangles) {
+      for (int k = 0; k < 3; ++k) {
+        const Vec3& p = result.mesh.vertices[t[k]];
+        const Vec3& q = result.mesh.vertices[t[(k + 1) % 3]];
+        resultEdges.insert({p.x(), p.y(), p.z(), q.x(), q.y(), q.z()});
+        resultEdges.insert({q.x(), q.y(), q.z(), p.x(), p.y(), p.z()});
+      }
+    }
+    for (const auto& [edge, uses] : edgeUse) {
+      if (uses != 1) continue;
+      const Vec3& p = mesh.vertices[edge.first];
+      const Vec3& q = mesh.vertices[edge.second];
+      EXPECT_TRUE(resultEdges.count({p.x(), p.y(), p.z(), q.x(), q.y(), q.z()}))
+          << path.filename() << ": border edge lost";
+    }
+    const ContainmentReport check = verifyContainment(mesh, result.mesh, BoundSide::Outer, 1000, 1);
+    EXPECT_FALSE(check.defined) << path.filename();
+    EXPECT_NE(check.note.find("closed"), std::string::npos) << check.note;
+  }
+  EXPECT_GE(openCount, 1);
+}
+
+TEST(BoundingMesh, QuadricErrorLimitIsADistanceAndIsRespected) {
+  const TriangleMesh mesh = loadOriented(fs::path(KABOUM_DATA_DIR) / "meshes/rocker-arm.obj");
+  BoundingMeshOptions options;
+  options.maxError = 0.01 * analyzeMesh(mesh).diagonal;
+  const BoundingMeshResult result = simplifyBounding(mesh, options);
+  EXPECT_LE(result.stats.quadricError, options.maxError);
+  EXPECT_GT(result.stats.quadricError, 0.5 * options.maxError);
+  EXPECT_EQ(result.stats.stopReason, "no contraction left within the error limit");
+}
+
+TEST(BoundingMesh, DistanceLimitHoldsAndShrinksLargeMeshesTenfold) {
+  const TriangleMesh mesh = loadOriented(fs::path(KABOUM_DATA_DIR) / "meshes/rocker-arm.obj");
+  const double epsilon = 0.01 * analyzeMesh(mesh).diagonal;
+  HausdorffReport measured;
+  const BoundingMeshResult result =
+      simplifyBoundingWithin(mesh, BoundingMeshOptions{}, epsilon, 20000, measured);
+  EXPECT_LE(std::max(measured.originalToResult.max, measured.resultToOriginal.max), epsilon);
+  // An independent, denser measurement agrees (sampling may miss a little of the true maximum).
+  const HausdorffReport check = measureHausdorff(mesh, result.mesh, 200000, 99);
+  EXPECT_LE(std::max(check.originalToResult.max, check.resultToOriginal.max), 1.05 * epsilon);
+  // At 1% of the diagonal a closed input above 10^4 vertices shrinks at least 10×.
+  EXPECT_LE(result.mesh.vertices.size() * 10, mesh.vertices.size());
+  const ContainmentReport contained =
+      verifyContainment(mesh, result.mesh, BoundSide::Outer, 20000, 5);
+  EXPECT_EQ(contained.violations, 0u);
+}
+
+TEST(BoundingMesh, AtTenPercentTheDistanceStaysBelowOnePercentOfTheDiagonal) {
+  const TriangleMesh mesh = loadOriented(fs::path(KABOUM_DATA_DIR) / "meshes/rocker-arm.obj");
+  BoundingMeshOptions options;
+  options.targetVertices = mesh.vertices.size() / 10;
+  const BoundingMeshResult result = simplifyBounding(mesh, options);
+  const HausdorffReport h = measureHausdorff(mesh, result.mesh, 50000, 2);
+  EXPECT_LE(h.originalToResult.max, 0.01 * h.diagonal);
+  EXPECT_LE(h.resultToOriginal.max, 0.01 * h.diagonal);
+}
+
+TEST(BoundingMesh, AllQuadricMergesAndCostsKeepTheGuarantee) {
+  const TriangleMesh mesh = loadOriented(fs::path(KABOUM_DATA_DIR) / "meshes/cow.obj");
+  for (const ContractionCost cost : {ContractionCost::Planes, ContractionCost::Triangles}) {
+    for (const QuadricMerge merge :
+         {QuadricMerge::Sum, QuadricMerge::Constant, QuadricMerge::Full}) {
+      BoundingMeshOptions options;
+      options.cost = cost;
+      options.merge = merge;
+      options.targetVertices = mesh.vertices.size() / 5;
+      const BoundingMeshResult result = simplifyBounding(mesh, options);
+      expectWellFormed(mesh, result.mesh, "cow");
+      const ContainmentReport check =
+          verifyContainment(mesh, result.mesh, BoundSide::Outer, 5000, 4);
+      EXPECT_EQ(check.violations, 0u);
+    }
+  }
+}
+
+TEST(BoundingMesh, IsDeterministic) {
+  const TriangleMesh mesh = loadOriented(fs::path(KABOUM_DATA_DIR) / "meshes/fandisk.obj");
+  BoundingMeshOptions options;
+  options.targetVertices = 500;
+  const BoundingMeshResult a = simplifyBounding(mesh, options);
+  const BoundingMeshResult b = simplifyBounding(mesh, options);
+  ASSERT_EQ(a.mesh.vertices.size(), b.mesh.vertices.size());
+  EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
+  for (std::size_t i = 0; i < a.mesh.vertices.size(); ++i) {
+    EXPECT_EQ(a.mesh.vertices[i], b.mesh.vertices[i]);
+  }
+}
+
+TEST(BoundingMesh, InconsistentOrientationIsAnInputError) {
+  TriangleMesh mesh = makeIcosphere(1);
+  std::swap(mesh.triangles[0][1], mesh.triangles[0][2]);
+  EXPECT_THROW(simplifyBounding(mesh, BoundingMeshOptions{}), InputError);
+}
+
+TEST(BoundingMesh, KnifeEdgesAreNeverContractedThroughThemselves) {
+  // A thin closed sliver (two triangles back to back, slightly apart): no feasible outer point
+  // exists for edges across it, so it must stay a valid closed mesh containing the input.
+  const TriangleMesh slab = makeBox(Vec3(0, 0, 0), Vec3(1.0, 1.0, 1e-4), 4);
+  BoundingMeshOptions options;
+  options.targetVertices = 4;
+  const BoundingMeshResult result = simplifyBounding(slab, options);
+  expectWellFormed(slab, result.mesh, "slab");
+  const ContainmentReport check = verifyContainment(slab, result.mesh, BoundSide::Outer, 2000, 1);
+  EXPECT_EQ(check.violations, 0u);
+}
+
+}  // namespace
+}  // namespace kaboum

@@ -1,0 +1,68 @@
+// Helpers shared by the test executables: a scratch directory and running the `kaboum` CLI.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+namespace kaboum::test {
+
+// A fresh directory under the system temp directory, removed with everything in it at scope end.
+class ScratchDir {
+ public:
+  ScratchDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = std::filesystem::temp_directory_path() /
+            ("kaboum-" + std::string(info->test_suite_name()) + "-" + info->name() + "-" +
+             std::to_string(::getpid()));
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ~ScratchDir() { std::filesystem::remove_all(path_); }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+
+  // Path of `name` inside the directory.
+  std::string file(const std::string& name) const { return (path_ / name).string(); }
+  // Writes `contents` (bytes as given) to `name` and returns its path.
+  std::string write(const std::string& name, const std::string& contents) const {
+    const std::string path = file(name);
+    std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+    std::ofstream(path, std::ios::binary) << contents;
+    return path;
+  }
+
+ private:
+  std::filesystem::path path_;
+};
+
+inline std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+struct CliResult {
+  int exitCode = -1;
+  std::string out, err;
+};
+
+// Runs `kaboum ARGUMENTS` (arguments are passed to the shell as written), capturing its output in
+// `dir`.
+inline CliResult runCli(const ScratchDir& dir, const std::string& arguments) {
+  const std::string command = std::string("'") + KABOUM_CLI + "' " + arguments + " >'" +
+                              dir.file("out.txt") + "' 2>'" + dir.file("err.txt") + "'";
+  const int status = std::system(command.c_str());
+  CliResult result;
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.out = slurp(dir.file("out.txt"));
+  result.err = slurp(dir.file("err.txt"));
+  return result;
+}
+
+}  // namespace kaboum::test
