@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
-#include <queue>
 #include <vector>
 
 #include "kaboum/core/error.hpp"
@@ -63,6 +62,7 @@ class BoundingMeshSimplifier {
   }
   Outcome contract(const Candidate& c);
   bool revisitParked();
+  void purgeHeap();
   TriangleMesh compact() const;
 
   BoundingMeshOptions options_;
@@ -85,7 +85,7 @@ class BoundingMeshSimplifier {
   std::size_t aliveVertices_ = 0;
   double tolerance_ = 0.0;
 
-  std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>> heap_;
+  std::vector<Candidate> heap_;    // binary min-heap on cost (std::push_heap with std::greater)
   std::vector<Candidate> parked_;  // rejected candidates, retried once their neighbourhood changes
   // Scratch, reused by every call so the main loop does not allocate once warmed up.
   std::vector<std::uint32_t> fanA_, fanB_, neighbours_;
@@ -284,7 +284,8 @@ bool BoundingMeshSimplifier::evaluate(std::uint32_t a, std::uint32_t b, Candidat
 void BoundingMeshSimplifier::queue(std::uint32_t a, std::uint32_t b) {
   Candidate c;
   if (evaluate(a, b, c)) {
-    heap_.push(c);
+    heap_.push_back(c);
+    std::push_heap(heap_.begin(), heap_.end(), std::greater<>{});
   } else {
     ++stats_.rejectedInfeasible;
   }
@@ -475,6 +476,16 @@ void BoundingMeshSimplifier::buildGrid(double cellSize) {
   verticesAtGridBuild_ = aliveVertices_;
 }
 
+// Drops candidates of dead vertices and superseded ones, which otherwise accumulate (every
+// contraction queues fresh candidates for the new vertex's edges) and dominate peak memory.
+void BoundingMeshSimplifier::purgeHeap() {
+  std::erase_if(heap_, [&](const Candidate& c) {
+    return !vertexAlive_[c.a] || !vertexAlive_[c.b] || fanVersion_[c.a] != c.fanA ||
+           fanVersion_[c.b] != c.fanB;
+  });
+  std::make_heap(heap_.begin(), heap_.end(), std::greater<>{});
+}
+
 bool BoundingMeshSimplifier::revisitParked() {
   bool any = false;
   std::size_t kept = 0;
@@ -566,7 +577,8 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
       ++stats_.rejectedInfeasible;
     }
   }
-  heap_ = decltype(heap_)(std::greater<>{}, std::move(initial));
+  heap_ = std::move(initial);
+  std::make_heap(heap_.begin(), heap_.end(), std::greater<>{});
 
   const std::size_t target = options_.targetVertices;
   const double maxCost = options_.maxError * options_.maxError;
@@ -575,8 +587,10 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
   while (aliveVertices_ > target) {
     if (heap_.empty() && !revisitParked()) break;
     if (heap_.empty()) continue;
-    const Candidate c = heap_.top();
-    heap_.pop();
+    if (heap_.size() > 12 * aliveVertices_) purgeHeap();
+    std::pop_heap(heap_.begin(), heap_.end(), std::greater<>{});
+    const Candidate c = heap_.back();
+    heap_.pop_back();
     if (!vertexAlive_[c.a] || !vertexAlive_[c.b]) continue;
     if (fanVersion_[c.a] != c.fanA || fanVersion_[c.b] != c.fanB) continue;  // superseded
     if (c.cost > maxCost) {
