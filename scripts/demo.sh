@@ -8,9 +8,9 @@ cmake --preset release
 cmake --build --preset release --target kaboum_cli
 mesh=/usr/share/doc/dart/data/urdf/KR5/meshes/forearm.STL
 mkdir -p out
-echo "== outer bounding mesh of $mesh at 10% of its vertices"
-build/release/kaboum bound "$mesh" -o out/kr5-forearm-outer.obj --outer --ratio 0.1
+echo "== outer bounding mesh of $mesh within 1% of its diagonal"
+build/release/kaboum bound "$mesh" -o out/kr5-forearm-outer.obj --outer --epsilon 1%
 build/release/kaboum check "$mesh" out/kr5-forearm-outer.obj --outer
-echo "== inner bounding mesh"
-build/release/kaboum bound "$mesh" -o out/kr5-forearm-inner.obj --inner --ratio 0.1
+echo "== inner bounding mesh within 1% of its diagonal"
+build/release/kaboum bound "$mesh" -o out/kr5-forearm-inner.obj --inner --epsilon 1%
 build/release/kaboum check "$mesh" out/kr5-forearm-inner.obj --inner
