@@ -70,7 +70,7 @@ AttachmentRuntime::AttachmentRuntime(const Domain& domain, const Problem& proble
         std::string path = module.library;
         if (path.find('/') == std::string::npos) {
           const auto local = std::filesystem::path(domain.file).parent_path() / path;
-          if (std::filesystem::exists(local)) path = local.string();
+          if (std::filesystem::exists(local)) path = std::filesystem::absolute(local).string();
         }
         handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
         if (handle == nullptr) {

@@ -61,6 +61,9 @@ class RelaxedHeuristic : public Heuristic {
     factCost_.resize(facts);
     supporter_.resize(facts);
     unsatisfied_.resize(source_.size());
+    for (std::size_t u = 0; u < source_.size(); ++u) {
+      preCount_.push_back(preStart_[u + 1] - preStart_[u]);
+    }
     operatorCost_.resize(source_.size());
     marked_.assign(task.operators.size(), 0);
     factMarked_.assign(facts, 0);
@@ -131,8 +134,8 @@ class RelaxedHeuristic : public Heuristic {
     if (cost >= factCost_[fact]) return;
     factCost_[fact] = cost;
     supporter_[fact] = unary;
-    heap_.push_back({cost, fact});
-    std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
+    if (static_cast<std::size_t>(cost) >= buckets_.size()) buckets_.resize(cost + 1);
+    buckets_[cost].push_back(fact);
   }
 
   void fire(int unary) {
@@ -145,10 +148,7 @@ class RelaxedHeuristic : public Heuristic {
   void explore(StateView state) {
     std::fill(factCost_.begin(), factCost_.end(), kInfinity);
     std::fill(operatorCost_.begin(), operatorCost_.end(), 0);
-    for (std::size_t u = 0; u < unsatisfied_.size(); ++u) {
-      unsatisfied_[u] = preStart_[u + 1] - preStart_[u];
-    }
-    heap_.clear();
+    std::copy(preCount_.begin(), preCount_.end(), unsatisfied_.begin());
     const auto atoms = static_cast<AtomId>(task_.atomNames.size());
     for (AtomId atom = 0; atom < atoms; ++atom) {
       if (state.atom(atom)) reach(atom, 0, -1);
@@ -161,20 +161,27 @@ class RelaxedHeuristic : public Heuristic {
       if (fact >= 0) reach(fact, 0, -1);
     }
     for (const int unary : unconditional_) fire(unary);
-    while (!heap_.empty()) {
-      std::pop_heap(heap_.begin(), heap_.end(), std::greater<>());
-      const auto [cost, fact] = heap_.back();
-      heap_.pop_back();
-      if (cost > factCost_[fact]) continue;
-      if (fact == goalFact_) break;
-      for (int i = consumerStart_[fact]; i < consumerStart_[fact + 1]; ++i) {
-        const int unary = consumers_[i];
-        operatorCost_[unary] = kind_ == Kind::Max
-                                   ? std::max(operatorCost_[unary], cost)
-                                   : std::min(operatorCost_[unary] + cost, kInfinity);
-        if (--unsatisfied_[unary] == 0) fire(unary);
+    // Bucket queue over integer costs; the current bucket may grow while it is scanned.
+    // (indexed access: reach() may grow buckets_ and move the buckets)
+    bool goalReached = false;
+    for (std::size_t cost = 0; cost < buckets_.size() && !goalReached; ++cost) {
+      for (std::size_t k = 0; k < buckets_[cost].size(); ++k) {
+        const int fact = buckets_[cost][k];
+        if (static_cast<std::size_t>(factCost_[fact]) != cost) continue;
+        if (fact == goalFact_) {
+          goalReached = true;
+          break;
+        }
+        const int c = static_cast<int>(cost);
+        for (int i = consumerStart_[fact]; i < consumerStart_[fact + 1]; ++i) {
+          const int unary = consumers_[i];
+          operatorCost_[unary] = kind_ == Kind::Max ? std::max(operatorCost_[unary], c)
+                                                    : std::min(operatorCost_[unary] + c, kInfinity);
+          if (--unsatisfied_[unary] == 0) fire(unary);
+        }
       }
     }
+    for (auto& bucket : buckets_) bucket.clear();
   }
 
   // FF: counts the distinct operators of a relaxed plan built from h_add's best supporters;
@@ -214,8 +221,8 @@ class RelaxedHeuristic : public Heuristic {
   int goalFact_;
   std::vector<int> pre_, preStart_, effects_, effectStart_, source_;
   std::vector<int> consumers_, consumerStart_, unconditional_;
-  std::vector<int> factCost_, supporter_, unsatisfied_, operatorCost_;
-  std::vector<std::pair<int, int>> heap_;
+  std::vector<int> preCount_, factCost_, supporter_, unsatisfied_, operatorCost_;
+  std::vector<std::vector<int>> buckets_;
   std::vector<int> stack_, touchedFacts_, touchedOps_;
   std::vector<std::uint8_t> marked_, factMarked_;
 };

@@ -588,7 +588,8 @@ class DomainParser : public Parser {
       }
       if (at >= decl.items.size())
         fail(kind, "expected the procedure name after '" + kind.text + "'");
-      const std::string& procedure = expectName(decl.items[at++], "a procedure name");
+      expectName(decl.items[at], "a procedure name");
+      const std::string& procedure = decl.items[at++].original;
       const std::size_t split = procedure.find('@');
       module.procedure = procedure.substr(0, split);
       if (split != std::string::npos) module.library = procedure.substr(split + 1);

@@ -89,6 +89,7 @@ class Reader {
     while (at_ < text_.size() && !isDelimiter(text_[at_])) {
       const auto ch = static_cast<unsigned char>(text_[at_]);
       if (ch < 0x20 || ch >= 0x7f) fail("unexpected character in name", here());
+      node.original.push_back(static_cast<char>(ch));
       node.text.push_back(static_cast<char>(std::tolower(ch)));
       advance();
     }

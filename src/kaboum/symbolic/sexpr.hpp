@@ -17,7 +17,8 @@ struct SourcePos {
 struct SExpr {
   enum class Kind { Atom, List, BracketList };
   Kind kind = Kind::Atom;
-  std::string text;  // atom text, lower-cased (PDDL is case-insensitive)
+  std::string text;      // atom text, lower-cased (PDDL is case-insensitive)
+  std::string original;  // atom text as written (procedure and library names are case-sensitive)
   std::vector<SExpr> items;
   SourcePos pos;
 
