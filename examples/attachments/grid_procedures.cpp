@@ -19,7 +19,9 @@ constexpr const char* kMap[8] = {
     "k..#....",  //
 };
 
-bool freeCell(long x, long y) { return x >= 0 && y >= 0 && x < 8 && y < 8 && kMap[y][x] != '#'; }
+bool freeCell(long x, long y) {
+  return x >= 0 && y >= 0 && x < 8 && y < 8 && kMap[y][x] != '#';
+}
 
 // Target cell of a step from (x, y) in the named direction.
 void target(const char* direction, long& x, long& y) {

@@ -168,6 +168,7 @@ struct Problem {
   std::vector<InitialFluent> initFluents;
   Formula goal;
   std::vector<int> goalSlotTypes;  // slots of quantifiers in the goal
+  std::vector<std::string> goalSlotNames;
 
   ObjectId findObject(const std::string& wanted) const;
   // Objects of `type` or any of its subtypes, in id order.

@@ -713,10 +713,9 @@ class ProblemParser : public Parser {
     if (init != nullptr) initial(*init);
     if (goal == nullptr) fail(define, "missing ':goal'");
     if (goal->items.size() != 2) fail(*goal, "expected one goal formula");
-    std::vector<std::string> slotNames;
     ScopeParser scope(
         file_, domain_, [this](const std::string& n) { return problem_.findObject(n); },
-        problem_.goalSlotTypes, slotNames);
+        problem_.goalSlotTypes, problem_.goalSlotNames);
     problem_.goal = scope.formula(goal->items[1]);
     return std::move(problem_);
   }

@@ -1,5 +1,6 @@
 #include "kaboum/symbolic/validator.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -74,6 +75,7 @@ class Replay {
       std::vector<ObjectId> binding(action.slotTypes.size(), 0);
       std::copy(step.args.begin(), step.args.end(), binding.begin());
       slotTypes_ = &action.slotTypes;
+      slotNames_ = &action.slotNames;
       if (!holds(action.precondition, binding)) {
         return stepFailure("precondition " + explain(action.precondition, binding, true));
       }
@@ -89,6 +91,7 @@ class Replay {
     }
     std::vector<ObjectId> binding(problem_.goalSlotTypes.size(), 0);
     slotTypes_ = &problem_.goalSlotTypes;
+    slotNames_ = &problem_.goalSlotNames;
     if (!holds(problem_.goal, binding)) {
       result.message = "goal not reached after " + std::to_string(plan.size()) +
                        " step(s): " + explain(problem_.goal, binding, true);
@@ -228,55 +231,98 @@ class Replay {
     return false;
   }
 
+  // PDDL text of `formula` with bound variables replaced by object names.
+  std::string text(const Formula& formula, const std::vector<ObjectId>& binding) const {
+    const auto list = [&](const std::string& head) {
+      std::string out = "(" + head;
+      for (const Formula& child : formula.children) out += " " + text(child, binding);
+      return out + ")";
+    };
+    switch (formula.kind) {
+      case Formula::Kind::True:
+        return "(and)";
+      case Formula::Kind::False:
+        return "(or)";
+      case Formula::Kind::Atom: {
+        std::string out = "(" + domain_.predicates[formula.symbol].name;
+        for (const Term& arg : formula.args) out += " " + termText(arg, binding);
+        return out + ")";
+      }
+      case Formula::Kind::Equal:
+        return "(= " + termText(formula.args[0], binding) + " " +
+               termText(formula.args[1], binding) + ")";
+      case Formula::Kind::Compare:
+        return "(numeric comparison)";
+      case Formula::Kind::Module: {
+        std::string out = "[" + domain_.modules[formula.symbol].name;
+        for (const Term& arg : formula.args) out += " " + termText(arg, binding);
+        return out + "]";
+      }
+      case Formula::Kind::Not:
+        return list("not");
+      case Formula::Kind::And:
+        return list("and");
+      case Formula::Kind::Or:
+        return list("or");
+      case Formula::Kind::Imply:
+        return list("imply");
+      case Formula::Kind::Exists:
+      case Formula::Kind::Forall: {
+        std::string out = formula.kind == Formula::Kind::Exists ? "(exists (" : "(forall (";
+        for (std::size_t i = 0; i < formula.slots.size(); ++i) {
+          const int slot = formula.slots[i];
+          out += (i > 0 ? " " : "") + (*slotNames_)[slot] + " - " +
+                 domain_.types[(*slotTypes_)[slot]].name;
+        }
+        return out + ") " + text(formula.children[0], binding) + ")";
+      }
+    }
+    return "";
+  }
+
   std::string termText(const Term& term, const std::vector<ObjectId>& binding) const {
+    if (term.kind == Term::Kind::Variable && unbound(term.index)) {
+      return (*slotNames_)[term.index];
+    }
     if (term.kind != Term::Kind::Function) return problem_.objectNames[resolve(term, binding)];
     std::string out = "(" + domain_.functions[term.index].name;
     for (const Term& arg : term.args) out += " " + termText(arg, binding);
     return out + ")";
   }
 
-  // Describes why `formula` does not evaluate to `want`, naming the first failing literal.
+  bool unbound(int slot) const {
+    return std::find(quantified_.begin(), quantified_.end(), slot) != quantified_.end();
+  }
+
+  // Describes why `formula` does not evaluate to `want`, down to the first failing literal of
+  // conjunctions and universal quantifiers.
   std::string explain(const Formula& formula, std::vector<ObjectId>& binding, bool want) {
-    switch (formula.kind) {
-      case Formula::Kind::Atom:
-        return describeAtom(domain_, problem_, formula.symbol, resolveAll(formula.args, binding)) +
-               (want ? " is false" : " is true");
-      case Formula::Kind::Equal:
-        return "(= " + termText(formula.args[0], binding) + " " +
-               termText(formula.args[1], binding) + ")" + (want ? " is false" : " is true");
-      case Formula::Kind::Module: {
-        std::string call = "[" + domain_.modules[formula.symbol].name;
-        for (const Term& arg : formula.args) call += " " + termText(arg, binding);
-        return call + "]" + (want ? " is false" : " is true");
+    if (formula.kind == Formula::Kind::Not) return explain(formula.children[0], binding, !want);
+    const bool conjunctive = (formula.kind == Formula::Kind::And && want) ||
+                             (formula.kind == Formula::Kind::Or && !want);
+    if (conjunctive) {
+      for (const Formula& child : formula.children) {
+        if (holds(child, binding) != want) return explain(child, binding, want);
       }
-      case Formula::Kind::Not:
-        return explain(formula.children[0], binding, !want);
-      case Formula::Kind::And:
-      case Formula::Kind::Or:
-        if ((formula.kind == Formula::Kind::And) == want) {
-          for (const Formula& child : formula.children) {
-            if (holds(child, binding) != want) return explain(child, binding, want);
-          }
-        }
-        break;
-      case Formula::Kind::Forall:
-      case Formula::Kind::Exists:
-        if ((formula.kind == Formula::Kind::Forall) == want) {
-          std::string out;
-          forEach(formula.slots, 0, binding, [&]() {
-            if (holds(formula.children[0], binding) == want) return true;
-            out = explain(formula.children[0], binding, want);
-            return false;
-          });
-          if (!out.empty()) return out;
-        }
-        break;
-      default:
-        break;
     }
-    return std::string(want ? "is false: " : "is true: ") + "formula at line " +
-           std::to_string(formula.pos.line) + " of " +
-           (slotTypes_ == &problem_.goalSlotTypes ? problem_.file : domain_.file);
+    if ((formula.kind == Formula::Kind::Forall && want) ||
+        (formula.kind == Formula::Kind::Exists && !want)) {
+      std::string out;
+      forEach(formula.slots, 0, binding, [&]() {
+        if (holds(formula.children[0], binding) == want) return true;
+        out = explain(formula.children[0], binding, want);
+        return false;
+      });
+      if (!out.empty()) return out;
+    }
+    quantified_.clear();
+    collectQuantified(formula);
+    return text(formula, binding) + (want ? " is false" : " is true");
+  }
+
+  void collectQuantified(const Formula& formula) {
+    quantified_.insert(quantified_.end(), formula.slots.begin(), formula.slots.end());
+    for (const Formula& child : formula.children) collectQuantified(child);
   }
 
   // Evaluates an effect on the current (old) state into adds_, deletes_ and writes_.
@@ -333,6 +379,8 @@ class Replay {
   const Problem& problem_;
   AttachmentRuntime& attachments_;
   const std::vector<int>* slotTypes_ = nullptr;
+  const std::vector<std::string>* slotNames_ = nullptr;
+  std::vector<int> quantified_;  // slots printed as variables by explain()
   std::set<Key> atoms_;
   std::map<Key, double> fluents_;
   std::vector<Key> adds_, deletes_;
