@@ -57,16 +57,16 @@ void registerClassical() {
     std::sort(problems.begin(), problems.end());
     for (const auto& problem : problems) {
       const std::string name = "BM_Classical/" + domainName + "/" + problem.stem().string();
-      benchmark::RegisterBenchmark(
-          name.c_str(),
-          [domainFile = (dir / "domain.pddl").string(),
-           problemFile = problem.string()](benchmark::State& state) {
-            SearchOptions options;
-            options.limits.seconds = 60;
-            PlanReport result;
-            for (auto _ : state) result = planFiles(domainFile, problemFile, {}, options);
-            report(state, result);
-          })
+      benchmark::RegisterBenchmark(name.c_str(),
+                                   [domainFile = (dir / "domain.pddl").string(),
+                                    problemFile = problem.string()](benchmark::State& state) {
+                                     SearchOptions options;
+                                     options.limits.seconds = 60;
+                                     PlanReport result;
+                                     for (auto _ : state)
+                                       result = planFiles(domainFile, problemFile, {}, options);
+                                     report(state, result);
+                                   })
           ->Iterations(1)
           ->Unit(benchmark::kMillisecond);
     }

@@ -15,8 +15,7 @@ TEST(FuzzCorpus, EveryInputIsHandled) {
       std::filesystem::path(KABOUM_DATA_DIR) / "../tests/symbolic/fuzz/corpus";
   std::size_t inputs = 0;
   for (const auto& entry : std::filesystem::directory_iterator(corpus)) {
-    EXPECT_NO_THROW(fuzz::parseAnyInput(readTextFile(entry.path().string())))
-        << entry.path();
+    EXPECT_NO_THROW(fuzz::parseAnyInput(readTextFile(entry.path().string()))) << entry.path();
     ++inputs;
   }
   EXPECT_GE(inputs, 5u);
