@@ -85,6 +85,15 @@ class Parser {
     return out;
   }
 
+  // Type named by `type` (nullptr: object); 'either' and undefined types are errors.
+  int typeId(const Domain& domain, const SExpr* type) const {
+    if (type == nullptr) return 0;
+    if (type->startsWith("either")) fail(*type, "unsupported: 'either' types");
+    const int id = domain.findType(expectName(*type, "a type name"));
+    if (id < 0) fail(*type, "undefined type '" + type->text + "'");
+    return id;
+  }
+
  protected:
   const std::string& file_;
 };
@@ -102,13 +111,7 @@ class ScopeParser : public Parser {
         slotTypes_(slotTypes),
         slotNames_(slotNames) {}
 
-  int resolveType(const SExpr* type) const {
-    if (type == nullptr) return 0;
-    if (type->startsWith("either")) fail(*type, "unsupported: 'either' types");
-    const int id = domain_.findType(expectName(*type, "a type name"));
-    if (id < 0) fail(*type, "undefined type '" + type->text + "'");
-    return id;
-  }
+  int resolveType(const SExpr* type) const { return typeId(domain_, type); }
 
   // Declares the variables of a typed list as new slots in scope; returns their slots.
   std::vector<int> declareVariables(const std::vector<SExpr>& items, std::size_t from,
@@ -489,13 +492,7 @@ class DomainParser : public Parser {
     }
   }
 
-  int resolveType(const SExpr* type) const {
-    if (type == nullptr) return 0;
-    if (type->startsWith("either")) fail(*type, "unsupported: 'either' types");
-    const int id = domain_.findType(expectName(*type, "a type name"));
-    if (id < 0) fail(*type, "undefined type '" + type->text + "'");
-    return id;
-  }
+  int resolveType(const SExpr* type) const { return typeId(domain_, type); }
 
   void constants(const SExpr& section) {
     for (const auto& [name, type] : typedList(section.items, 1, false, section.items.size())) {
@@ -730,14 +727,8 @@ class ProblemParser : public Parser {
         }
         fail(*name, "duplicate object '" + name->text + "'");
       }
-      int typeId = 0;
-      if (type != nullptr) {
-        if (type->startsWith("either")) fail(*type, "unsupported: 'either' types");
-        typeId = domain_.findType(expectName(*type, "a type name"));
-        if (typeId < 0) fail(*type, "undefined type '" + type->text + "'");
-      }
       problem_.objectNames.push_back(name->text);
-      problem_.objectTypes.push_back(typeId);
+      problem_.objectTypes.push_back(typeId(domain_, type));
     }
   }
 
