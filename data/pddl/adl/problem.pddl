@@ -1,0 +1,7 @@
+(define (problem paint-far-room)
+  (:domain adl-robot)
+  (:objects a b c - location box - item brush - tool)
+  (:init (at-robot home) (road home a) (road b a) (road b c)
+         (at box c) (at brush b))
+  (:goal (and (painted c) (at box home) (not (carrying box))
+              (forall (?t - tool) (at ?t home)))))

@@ -1,0 +1,73 @@
+#include "kaboum/symbolic/planner.hpp"
+
+#include <chrono>
+
+namespace kaboum::symbolic {
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+PlanReport plan(const Domain& domain, const Problem& problem, const ProcedureRegistry& procedures,
+                const SearchOptions& options) {
+  PlanReport report;
+  const auto groundStart = std::chrono::steady_clock::now();
+  AttachmentRuntime attachments(domain, problem, procedures);
+  const GroundTask task = ground(domain, problem);
+  report.groundSeconds = secondsSince(groundStart);
+  report.grounding = task.statistics;
+  report.search = search(task, attachments, options);
+  for (const int op : report.search.plan)
+    report.plan.push_back("(" + task.operators[op].name + ")");
+  report.modules = attachments.statistics();
+  return report;
+}
+
+PlanReport planFiles(const std::string& domainPath, const std::string& problemPath,
+                     const ProcedureRegistry& procedures, const SearchOptions& options) {
+  const auto parseStart = std::chrono::steady_clock::now();
+  const Domain domain = loadDomain(domainPath);
+  const Problem problem = loadProblem(problemPath, domain);
+  const double parseSeconds = secondsSince(parseStart);
+  PlanReport report = plan(domain, problem, procedures, options);
+  report.parseSeconds = parseSeconds;
+  return report;
+}
+
+nlohmann::json toJson(const PlanReport& report) {
+  const SearchStatistics& stats = report.search.statistics;
+  nlohmann::json modules = nlohmann::json::array();
+  for (const ModuleStatistics& module : report.modules) {
+    modules.push_back({{"module", module.name},
+                       {"calls", module.calls},
+                       {"cache_hits", module.cacheHits},
+                       {"seconds", module.seconds}});
+  }
+  const bool solved = report.search.status == SearchStatus::Solved;
+  return {{"status", toString(report.search.status)},
+          {"plan_length", solved ? nlohmann::json(report.plan.size()) : nlohmann::json()},
+          {"plan", report.plan},
+          {"expanded", stats.expanded},
+          {"generated", stats.generated},
+          {"evaluated", stats.evaluated},
+          {"reopened", stats.reopened},
+          {"dead_ends", stats.deadEnds},
+          {"stored_states", stats.storedStates},
+          {"memory_bytes", stats.memoryBytes},
+          {"iterations", stats.iterations},
+          {"grounding",
+           {{"atoms", report.grounding.reachableAtoms},
+            {"operators", report.grounding.operators},
+            {"fixpoint_passes", report.grounding.fixpointPasses}}},
+          {"time",
+           {{"parse", report.parseSeconds},
+            {"ground", report.groundSeconds},
+            {"search", stats.seconds},
+            {"total", report.parseSeconds + report.groundSeconds + stats.seconds}}},
+          {"attachments", modules}};
+}
+
+}  // namespace kaboum::symbolic

@@ -1,0 +1,1 @@
+(define (problem q) (:domain blocks) (:objects a b - block) (:init (on a b) (= (below a) b) (= (weight b) 2.5)) (:goal (and (exists (?x - block) (holding ?x)) (forall (?y - block) (or (clear ?y) (= (below ?y) a))))))

@@ -1,0 +1,46 @@
+// Helpers shared by the symbolic tests: data paths, planning a file pair and validating the plan
+// with our validator, and running the CLI.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "kaboum/symbolic/planner.hpp"
+#include "kaboum/symbolic/validator.hpp"
+
+namespace kaboum::symbolic::testing {
+
+inline std::string pddlPath(const std::string& relative) {
+  return std::string(KABOUM_DATA_DIR) + "/pddl/" + relative;
+}
+
+// Plans and checks the plan with validatePlan; returns the report.
+inline PlanReport planAndValidate(const Domain& domain, const Problem& problem,
+                                  const SearchOptions& options,
+                                  const ProcedureRegistry& procedures = {}) {
+  PlanReport report = plan(domain, problem, procedures, options);
+  if (report.search.status == SearchStatus::Solved) {
+    std::string text;
+    for (const std::string& step : report.plan) text += step + "\n";
+    const std::vector<PlanStep> steps = parsePlan(text, "plan", domain, problem);
+    AttachmentRuntime attachments(domain, problem, procedures);
+    const ValidationResult verdict = validatePlan(domain, problem, steps, attachments);
+    EXPECT_TRUE(verdict.valid) << options.mode << "/" << options.heuristic << ": "
+                               << verdict.message;
+  }
+  return report;
+}
+
+struct CommandResult {
+  int exitCode = -1;
+  std::string output;  // stdout and stderr
+};
+
+// Runs the kaboum CLI with `arguments` (a shell-quoted string).
+CommandResult runCli(const std::string& arguments);
+
+// Writes `text` to a fresh file under the test temp directory and returns its path.
+std::string writeTempFile(const std::string& name, const std::string& text);
+
+}  // namespace kaboum::symbolic::testing

@@ -1,0 +1,111 @@
+// Grounder tests: reachability pruning, static simplification, ADL compilation.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "kaboum/core/error.hpp"
+#include "kaboum/symbolic/task.hpp"
+#include "symbolic_test_support.hpp"
+
+namespace kaboum::symbolic {
+namespace {
+
+using testing::pddlPath;
+
+bool hasOperator(const GroundTask& task, const std::string& name) {
+  return std::any_of(task.operators.begin(), task.operators.end(),
+                     [&](const Operator& op) { return op.name == name; });
+}
+
+TEST(Grounder, GripperOperatorsMatchTheTypedCount) {
+  const Domain domain = loadDomain(pddlPath("gripper/domain.pddl"));
+  const Problem problem = loadProblem(pddlPath("gripper/prob01.pddl"), domain);
+  const GroundTask task = ground(domain, problem);
+  // 2 rooms, 4 balls, 2 grippers: move for each (from, to) pair including from = to (it has
+  // effects), pick and drop for each ball x room x gripper.
+  EXPECT_EQ(task.operators.size(), 4u + 16u + 16u);
+  // Static predicates (room, ball, gripper) are compiled away.
+  for (const Operator& op : task.operators) {
+    for (const AtomId atom : op.precondition.positive) {
+      EXPECT_EQ(task.atomNames[atom].find("(room"), std::string::npos);
+    }
+  }
+}
+
+TEST(Grounder, PrunesUnreachableOperators) {
+  const Domain domain = parseDomain(R"((define (domain r)
+    (:predicates (at ?x) (road ?x ?y) (gold ?x) (rich))
+    (:action go :parameters (?x ?y) :precondition (and (at ?x) (road ?x ?y))
+      :effect (and (at ?y) (not (at ?x))))
+    (:action take :parameters (?x) :precondition (and (at ?x) (gold ?x)) :effect (rich))))",
+                                    "r.pddl");
+  const Problem problem = parseProblem(R"((define (problem p) (:domain r)
+    (:objects a b c island)
+    (:init (at a) (road a b) (road b c) (gold island))
+    (:goal (rich))))",
+                                       "p.pddl", domain);
+  const GroundTask task = ground(domain, problem);
+  EXPECT_TRUE(hasOperator(task, "go a b"));
+  EXPECT_TRUE(hasOperator(task, "go b c"));
+  EXPECT_FALSE(hasOperator(task, "take island"));  // never reachable
+  EXPECT_TRUE(task.goal.empty());                  // (rich) is unreachable: unsolvable
+}
+
+TEST(Grounder, CompilesAdlFeatures) {
+  const Domain domain = loadDomain(pddlPath("adl/domain.pddl"));
+  const Problem problem = loadProblem(pddlPath("adl/problem.pddl"), domain);
+  const GroundTask task = ground(domain, problem);
+  // (or (road a b) (road b a)) is static: exactly one drive a->b operator, no split.
+  EXPECT_EQ(std::count_if(task.operators.begin(), task.operators.end(),
+                          [](const Operator& op) { return op.name == "drive a b"; }),
+            1);
+  EXPECT_FALSE(hasOperator(task, "drive home c"));  // no road
+  EXPECT_FALSE(hasOperator(task, "drive a a"));     // (not (= ?from ?to))
+  // Drive moves carried items with one conditional effect per item.
+  for (const Operator& op : task.operators) {
+    if (op.name.rfind("drive", 0) == 0) {
+      EXPECT_EQ(op.conditional.size(), 2u) << op.name;
+    }
+  }
+  // paint c: the existential over tools becomes a precondition on the brush; the universal
+  // requires carrying the box (the only item that can be at c).
+  const auto paint = std::find_if(task.operators.begin(), task.operators.end(),
+                                  [](const Operator& op) { return op.name == "paint c"; });
+  ASSERT_NE(paint, task.operators.end());
+  EXPECT_EQ(task.goal.size(), 1u);
+}
+
+TEST(Grounder, SplitsDisjunctivePreconditions) {
+  const Domain domain = parseDomain(R"((define (domain d)
+    (:predicates (p) (q) (done))
+    (:action a :parameters () :precondition (or (p) (q)) :effect (done))
+    (:action spoil :parameters () :precondition (done) :effect (and (not (p)) (not (q))))))",
+                                    "d.pddl");
+  const Problem problem = parseProblem(
+      "(define (problem x) (:domain d) (:init (p) (q)) (:goal (done)))", "x.pddl", domain);
+  const GroundTask task = ground(domain, problem);
+  EXPECT_EQ(std::count_if(task.operators.begin(), task.operators.end(),
+                          [](const Operator& op) { return op.name == "a"; }),
+            2);
+}
+
+TEST(Grounder, RejectsFormulasWithTooManyDisjuncts) {
+  const Domain domain = parseDomain(R"((define (domain d)
+    (:predicates (p ?x) (q ?x) (done))
+    (:action a :parameters () :precondition (forall (?x) (or (p ?x) (q ?x))) :effect (done))
+    (:action spoil :parameters (?x) :precondition (done) :effect (and (not (p ?x)) (not (q ?x))))))",
+                                    "d.pddl");
+  std::string init;
+  std::string objects;
+  for (int i = 0; i < 16; ++i) {
+    objects += " o" + std::to_string(i);
+    init += " (p o" + std::to_string(i) + ") (q o" + std::to_string(i) + ")";
+  }
+  const Problem problem = parseProblem("(define (problem x) (:domain d) (:objects" + objects +
+                                           ") (:init" + init + ") (:goal (done)))",
+                                       "x.pddl", domain);
+  EXPECT_THROW(ground(domain, problem, 1024), InputError);
+}
+
+}  // namespace
+}  // namespace kaboum::symbolic
