@@ -13,6 +13,11 @@ namespace kaboum {
 
 using Jacobian = Eigen::Matrix<double, 6, Eigen::Dynamic>;
 
+// View of an Eigen vector as the joint-value span the kinematics functions take.
+inline std::span<const double> asSpan(const Eigen::VectorXd& q) {
+  return {q.data(), static_cast<std::size_t>(q.size())};
+}
+
 class KinematicChain {
  public:
   // The path from the model root to `tipLink` (default: RobotModel::defaultTip()). Throws

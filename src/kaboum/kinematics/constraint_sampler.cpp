@@ -1,0 +1,68 @@
+#include "kaboum/kinematics/constraint_sampler.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "kaboum/kinematics/random_configuration.hpp"
+
+namespace kaboum {
+
+ConstraintSampler::ConstraintSampler(const ConstraintProblem& problem,
+                                     ConstraintSamplerOptions options)
+    : problem_(&problem),
+      options_(options),
+      rng_(options.seed),
+      cost_(problem.costDimension()),
+      step_(problem.dof()),
+      jacobian_(problem.costDimension(), problem.dof()),
+      svd_(problem.costDimension(), problem.dof(), Eigen::ComputeThinU | Eigen::ComputeThinV) {}
+
+void ConstraintSampler::keepWithinLimits(std::span<double> q) const {
+  for (int r = 0; r < problem_->robotCount(); ++r) {
+    const KinematicChain& chain = problem_->chain(r);
+    for (int i = 0; i < chain.dof(); ++i) {
+      double& value = q[static_cast<std::size_t>(problem_->firstVariable(r) + i)];
+      if (chain.joint(i).type == JointType::Continuous) {
+        value = std::remainder(value, 2 * std::numbers::pi);
+      } else {
+        value = std::clamp(value, chain.lower(i), chain.upper(i));
+      }
+    }
+  }
+}
+
+bool ConstraintSampler::project(std::span<double> q) {
+  keepWithinLimits(q);
+  for (lastIterations_ = 0; lastIterations_ <= options_.maxIterations; ++lastIterations_) {
+    problem_->evaluate(q, cost_, jacobian_, options_.jacobian);
+    lastCostNorm_ = cost_.norm();
+    if (lastCostNorm_ <= options_.tolerance) return true;
+    if (lastIterations_ == options_.maxIterations) break;
+    // Gauss–Newton step with the pseudo-inverse (rank-deficient J allowed), capped in size.
+    svd_.compute(jacobian_);
+    svd_.setThreshold(1e-10);
+    step_ = svd_.solve(cost_);
+    const double largest = step_.cwiseAbs().maxCoeff();
+    if (largest > options_.maxStep) step_ *= options_.maxStep / largest;
+    for (std::size_t i = 0; i < q.size(); ++i) q[i] -= step_[static_cast<Eigen::Index>(i)];
+    keepWithinLimits(q);
+  }
+  return false;
+}
+
+bool ConstraintSampler::sample(std::span<double> q) {
+  for (lastAttempts_ = 1; lastAttempts_ <= options_.maxAttempts; ++lastAttempts_) {
+    for (int r = 0; r < problem_->robotCount(); ++r) {
+      const KinematicChain& chain = problem_->chain(r);
+      randomConfiguration(chain, rng_,
+                          q.subspan(static_cast<std::size_t>(problem_->firstVariable(r)),
+                                    static_cast<std::size_t>(chain.dof())));
+    }
+    if (project(q)) return true;
+  }
+  lastAttempts_ = options_.maxAttempts;
+  return false;
+}
+
+}  // namespace kaboum
