@@ -14,13 +14,14 @@ namespace {
 struct FkOptions {
   std::string urdf;
   std::string tip;
+  std::string base;
   std::vector<double> q;
   bool json = false;
 };
 
 int runFk(const FkOptions& options) {
   const RobotModel model = loadUrdf(options.urdf);
-  const KinematicChain chain(model, options.tip);
+  const KinematicChain chain(model, options.tip, options.base);
   if (static_cast<int>(options.q.size()) != chain.dof()) {
     throw InputError(locate(options.urdf, "chain to '" + chain.tipName() + "' has " +
                                               std::to_string(chain.dof()) + " joints, got " +
@@ -47,6 +48,8 @@ VerbRunner setupFk(CLI::App& command) {
   command.add_option("urdf", options->urdf, "Robot description (URDF)")->required();
   command.add_option("q", options->q, "Joint values of the chain, root to tip (rad, m)");
   command.add_option("--tip", options->tip, "Tip link of the chain (default: end of the trunk)");
+  command.add_option("--base", options->base,
+                     "Base link of the chain; poses are in its frame (default: root)");
   command.add_flag("--json", options->json, "Print the pose as JSON");
   return [options] { return runFk(*options); };
 }

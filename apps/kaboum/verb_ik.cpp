@@ -17,6 +17,7 @@ namespace {
 struct IkOptions {
   std::string urdf;
   std::string tip;
+  std::string base;
   std::vector<double> pose;
   bool all = false;
   std::uint64_t seed = 1;
@@ -71,7 +72,7 @@ std::vector<std::vector<double>> solve(const KinematicChain& chain, const Pose& 
 
 int runIk(const IkOptions& options) {
   const RobotModel model = loadUrdf(options.urdf);
-  const KinematicChain chain(model, options.tip);
+  const KinematicChain chain(model, options.tip, options.base);
   const Pose target = targetPose(options);
   std::string method;
   const auto solutions = solve(chain, target, options, method);
@@ -100,6 +101,8 @@ VerbRunner setupIk(CLI::App& command) {
       ->expected(7)
       ->required();
   command.add_option("--tip", options->tip, "Tip link of the chain (default: end of the trunk)");
+  command.add_option("--base", options->base,
+                     "Base link of the chain; poses are in its frame (default: root)");
   command.add_flag("--all", options->all, "Print all solutions (one per line)");
   command.add_option("--seed", options->seed, "Seed of the numeric solver's restarts");
   command.add_flag("--json", options->json, "Print the solutions as JSON");

@@ -156,6 +156,22 @@ TEST(ArmIk, Kr5ParametersMatchItsUrdf) {
   EXPECT_NEAR(arm.d3, 0.0, 1e-6);
 }
 
+TEST(ArmIk, ComauParametersMatchTheRoboticsLibraryModel) {
+  const RobotModel robot = loadUrdf(test::kComauRight);
+  const KinematicChain chain(robot);
+  const auto ik = ArmIk::fit(chain);
+  ASSERT_TRUE(ik);
+  const SixAxisArm& arm = ik->sixAxis();
+  // robot-right.mdl.xml: base height 0.45, shoulder offset 0.15, upper arm 0.59, elbow offset
+  // 0.13, forearm 0.64707 (the 0.095 flange is absorbed into the tool transform).
+  EXPECT_NEAR(arm.d1, 0.45, 1e-12);
+  EXPECT_NEAR(arm.a1, 0.15, 1e-12);
+  EXPECT_NEAR(arm.a2, 0.59, 1e-12);
+  EXPECT_NEAR(std::abs(arm.a3), 0.13, 1e-12);
+  EXPECT_NEAR(arm.d4, 0.64707, 1e-12);
+  EXPECT_NEAR(arm.d3, 0.0, 1e-12);
+}
+
 TEST(ArmIk, WamDoesNotFitAndUnreachableTargetsHaveNoSolution) {
   const RobotModel wam = loadUrdf(test::kWam);
   EXPECT_FALSE(ArmIk::fit(KinematicChain(wam)));

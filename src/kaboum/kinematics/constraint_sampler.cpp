@@ -1,8 +1,6 @@
 #include "kaboum/kinematics/constraint_sampler.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <numbers>
 
 #include "kaboum/kinematics/random_configuration.hpp"
 
@@ -21,14 +19,8 @@ ConstraintSampler::ConstraintSampler(const ConstraintProblem& problem,
 void ConstraintSampler::keepWithinLimits(std::span<double> q) const {
   for (int r = 0; r < problem_->robotCount(); ++r) {
     const KinematicChain& chain = problem_->chain(r);
-    for (int i = 0; i < chain.dof(); ++i) {
-      double& value = q[static_cast<std::size_t>(problem_->firstVariable(r) + i)];
-      if (chain.joint(i).type == JointType::Continuous) {
-        value = std::remainder(value, 2 * std::numbers::pi);
-      } else {
-        value = std::clamp(value, chain.lower(i), chain.upper(i));
-      }
-    }
+    chain.keepWithinLimits(q.subspan(static_cast<std::size_t>(problem_->firstVariable(r)),
+                                     static_cast<std::size_t>(chain.dof())));
   }
 }
 

@@ -1,21 +1,30 @@
 #include "kaboum/kinematics/kinematic_chain.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 
 #include "kaboum/core/error.hpp"
 
 namespace kaboum {
 
-KinematicChain::KinematicChain(const RobotModel& model, const std::string& tipLink) {
-  int tip = model.defaultTip();
-  if (!tipLink.empty()) {
-    const auto found = model.findLink(tipLink);
-    if (!found) throw InputError(locate(model.name(), "no link named '" + tipLink + "'"));
-    tip = *found;
-  }
+KinematicChain::KinematicChain(const RobotModel& model, const std::string& tipLink,
+                               const std::string& baseLink) {
+  const auto linkNamed = [&](const std::string& name) {
+    const auto found = model.findLink(name);
+    if (!found) throw InputError(locate(model.name(), "no link named '" + name + "'"));
+    return *found;
+  };
+  const int tip = tipLink.empty() ? model.defaultTip() : linkNamed(tipLink);
+  const int base = baseLink.empty() ? 0 : linkNamed(baseLink);
   tipName_ = model.links()[static_cast<std::size_t>(tip)].name;
   std::vector<const Joint*> path;
-  for (int link = tip; model.links()[static_cast<std::size_t>(link)].parentJoint >= 0;) {
+  for (int link = tip; link != base;) {
+    if (model.links()[static_cast<std::size_t>(link)].parentJoint < 0) {
+      throw InputError(
+          locate(model.name(),
+                 "link '" + baseLink + "' is not on the path from the root to '" + tipName_ + "'"));
+    }
     const Joint& joint = model.joints()[static_cast<std::size_t>(
         model.links()[static_cast<std::size_t>(link)].parentJoint)];
     path.push_back(&joint);
@@ -42,6 +51,14 @@ bool KinematicChain::withinLimits(std::span<const double> q, double tolerance) c
     if (q[i] < joints_[i].lower - tolerance || q[i] > joints_[i].upper + tolerance) return false;
   }
   return true;
+}
+
+void KinematicChain::keepWithinLimits(std::span<double> q) const {
+  for (std::size_t i = 0; i < joints_.size(); ++i) {
+    q[i] = joints_[i].type == JointType::Continuous
+               ? std::remainder(q[i], 2 * std::numbers::pi)
+               : std::clamp(q[i], joints_[i].lower, joints_[i].upper);
+  }
 }
 
 Pose KinematicChain::toolPose(std::span<const double> q) const {

@@ -1,5 +1,6 @@
-// A serial path through a RobotModel from its root to a tip link: forward kinematics of the tool
-// frame FK: Rⁿ → SE(3) and its geometric Jacobian (thesis §3.1, §5.2), allocation-free.
+// A serial path through a RobotModel from its root (or a base link) to a tip link: forward
+// kinematics of the tool frame FK: Rⁿ → SE(3) and its geometric Jacobian (thesis §3.1, §5.2),
+// allocation-free.
 #pragma once
 
 #include <Eigen/Core>
@@ -20,9 +21,11 @@ inline std::span<const double> asSpan(const Eigen::VectorXd& q) {
 
 class KinematicChain {
  public:
-  // The path from the model root to `tipLink` (default: RobotModel::defaultTip()). Throws
-  // InputError for an unknown link name.
-  explicit KinematicChain(const RobotModel& model, const std::string& tipLink = {});
+  // The path from `baseLink` (default: the model root) to `tipLink` (default:
+  // RobotModel::defaultTip()); poses are in the base link frame. Throws InputError for an
+  // unknown link name or a base that is not an ancestor of the tip.
+  explicit KinematicChain(const RobotModel& model, const std::string& tipLink = {},
+                          const std::string& baseLink = {});
 
   [[nodiscard]] int dof() const { return static_cast<int>(joints_.size()); }
   [[nodiscard]] const std::string& tipName() const { return tipName_; }
@@ -30,6 +33,8 @@ class KinematicChain {
   [[nodiscard]] double lower(int i) const { return joint(i).lower; }
   [[nodiscard]] double upper(int i) const { return joint(i).upper; }
   [[nodiscard]] bool withinLimits(std::span<const double> q, double tolerance = 1e-9) const;
+  // Moves q into the limits: continuous joints wrap into [−π, π), others are clamped.
+  void keepWithinLimits(std::span<double> q) const;
 
   // Pose of the tip link in the model root frame.
   [[nodiscard]] Pose toolPose(std::span<const double> q) const;

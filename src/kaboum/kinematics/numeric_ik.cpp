@@ -1,6 +1,7 @@
 #include "kaboum/kinematics/numeric_ik.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "kaboum/kinematics/random_configuration.hpp"
 
@@ -25,7 +26,7 @@ NumericIk::Twist NumericIk::poseError(const Pose& target, const Pose& current) c
 
 bool NumericIk::descend(const Pose& target, Eigen::VectorXd& q) {
   // Levenberg–Marquardt: Δq = Jᵀ (J Jᵀ + λ² I)⁻¹ e, λ shrinking on success and growing on
-  // failure; steps are clamped to the joint limits.
+  // failure; steps are kept within the joint limits.
   double lambda = 1e-2;
   Pose current = chain_->toolPoseAndJacobian(asSpan(q), jacobian_);
   Twist error = poseError(target, current);
@@ -38,9 +39,8 @@ bool NumericIk::descend(const Pose& target, Eigen::VectorXd& q) {
         jacobian_.lazyProduct(jacobian_.transpose()) +
         lambda * lambda * Eigen::Matrix<double, 6, 6>::Identity();
     step_.noalias() = jacobian_.transpose() * normal.ldlt().solve(error);
-    for (int i = 0; i < chain_->dof(); ++i) {
-      trial_[i] = std::clamp(q[i] + step_[i], chain_->lower(i), chain_->upper(i));
-    }
+    trial_ = q + step_;
+    chain_->keepWithinLimits(std::span(trial_.data(), static_cast<std::size_t>(trial_.size())));
     const Pose next = chain_->toolPose(asSpan(trial_));
     const Twist nextError = poseError(target, next);
     if (nextError.squaredNorm() < error.squaredNorm()) {
@@ -58,12 +58,13 @@ bool NumericIk::descend(const Pose& target, Eigen::VectorXd& q) {
 
 bool NumericIk::solve(const Pose& target, std::span<const double> initial,
                       std::span<double> solution) {
+  if (!initial.empty() && initial.size() != static_cast<std::size_t>(chain_->dof())) {
+    throw std::invalid_argument("NumericIk::solve: initial guess needs one value per joint");
+  }
   for (startsUsed_ = 1; startsUsed_ <= options_.maxStarts; ++startsUsed_) {
     if (startsUsed_ == 1 && !initial.empty()) {
-      for (int i = 0; i < chain_->dof(); ++i) {
-        q_[i] =
-            std::clamp(initial[static_cast<std::size_t>(i)], chain_->lower(i), chain_->upper(i));
-      }
+      std::copy(initial.begin(), initial.end(), q_.begin());
+      chain_->keepWithinLimits(std::span(q_.data(), static_cast<std::size_t>(q_.size())));
     } else {
       randomConfiguration(*chain_, rng_, std::span(q_.data(), static_cast<std::size_t>(q_.size())));
     }

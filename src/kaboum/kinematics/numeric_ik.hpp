@@ -23,9 +23,9 @@ class NumericIk {
  public:
   explicit NumericIk(const KinematicChain& chain, NumericIkOptions options = {});
 
-  // Solves FK(q) = target from `initial` (empty: a random start), then random restarts. Writes
-  // the solution (within limits) to `solution` and returns true, or false when every start
-  // failed. Allocates nothing; restarts draw from the solver's own seeded generator.
+  // Solves FK(q) = target from `initial` (dof() values, or empty for a random start), then random
+  // restarts. Writes the solution (within limits) to `solution` and returns true, or false when
+  // every start failed. Allocates nothing; restarts draw from the solver's own seeded generator.
   bool solve(const Pose& target, std::span<const double> initial, std::span<double> solution);
 
   // Starts used by the last solve (1 = the first start succeeded).
