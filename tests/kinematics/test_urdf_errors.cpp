@@ -8,6 +8,13 @@
 #include "kaboum/core/error.hpp"
 #include "kaboum/kinematics/urdf_loader.hpp"
 
+// urdfdom 3.0.1 leaks the links of a cyclic joint graph when it rejects it (the links own each
+// other through child_links); the "cycle.urdf" case below triggers that, so LeakSanitizer is
+// told to ignore allocations made inside urdf::parseURDF.
+extern "C" const char* __lsan_default_suppressions() {
+  return "leak:urdf::parseURDF\n";
+}
+
 namespace kaboum {
 namespace {
 
