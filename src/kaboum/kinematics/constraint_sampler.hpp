@@ -37,6 +37,8 @@ class ConstraintSampler {
 
  private:
   void keepWithinLimits(std::span<double> q) const;
+  // Zeroes the Jacobian columns of joints at a limit that step_ pushes outwards; true if any.
+  bool holdJointsAtLimits(std::span<const double> q);
 
   const ConstraintProblem* problem_;
   ConstraintSamplerOptions options_;
