@@ -1,0 +1,80 @@
+// Hot paths allocate nothing per call: FK, Jacobian, closed-form and numeric IK, constraint
+// evaluation and sampling. Counts global operator new calls around each call.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+#include <numbers>
+
+#include "kaboum/kinematics/arm_ik.hpp"
+#include "kaboum/kinematics/constraint_sampler.hpp"
+#include "kaboum/kinematics/numeric_ik.hpp"
+#include "kaboum/kinematics/urdf_loader.hpp"
+#include "robots.hpp"
+
+// The replacements below pair malloc/free themselves; GCC cannot see that through inlining.
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+
+namespace {
+std::atomic<long> allocations{0};
+}  // namespace
+
+void* operator new(std::size_t size) {
+  ++allocations;
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+  std::free(p);
+}
+
+namespace kaboum {
+namespace {
+
+template <typename F>
+long allocationsDuring(F&& call) {
+  const long before = allocations.load();
+  call();
+  return allocations.load() - before;
+}
+
+TEST(NoAllocation, KinematicsHotPaths) {
+  const RobotModel kr5 = loadUrdf(test::kKr5);
+  const KinematicChain chain(kr5);
+  const auto ik = ArmIk::fit(chain);
+  ASSERT_TRUE(ik);
+  std::vector<double> q{0.1, 0.2, -0.3, 0.4, 0.5, 0.6}, solution(6);
+  std::vector<Pose> poses(kr5.links().size());
+  Jacobian jacobian(6, 6);
+  ArmIk::Solutions solutions;
+  NumericIk numeric(chain);
+  const Pose target = chain.toolPose(q);
+  EXPECT_GT(allocationsDuring([&] { const KinematicChain copy(kr5); }), 0);  // counter works
+  EXPECT_EQ(allocationsDuring([&] { kr5.linkPoses(q, poses); }), 0);
+  EXPECT_EQ(allocationsDuring([&] { (void)chain.toolPoseAndJacobian(q, jacobian); }), 0);
+  EXPECT_EQ(allocationsDuring([&] { ik->solve(target, solutions); }), 0);
+  EXPECT_EQ(allocationsDuring([&] { ASSERT_TRUE(numeric.solve(target, {}, solution)); }), 0);
+
+  ConstraintProblem problem;
+  problem.addRobot(chain);
+  const auto center =
+      problem.attachToTool(0, Pose::Identity(), PrimitiveShape::makePoint({0, 0, 0}));
+  const auto axis =
+      problem.attachToTool(0, Pose::Identity(), PrimitiveShape::makeLine({0, 0, 0}, {1, 0, 0}));
+  const auto plane =
+      problem.attachToObject(Pose::Identity(), PrimitiveShape::makePlane({0, 0, 0.3}, {0, 0, 1}));
+  problem.addConstraint(ConstraintType::Distance, center, plane, 0.1);
+  problem.addConstraint(ConstraintType::Parallel, axis, plane);
+  ConstraintSampler sampler(problem);
+  Eigen::VectorXd cost(problem.costDimension());
+  Eigen::MatrixXd costJacobian(problem.costDimension(), problem.dof());
+  EXPECT_EQ(allocationsDuring([&] { problem.evaluate(q, cost, costJacobian); }), 0);
+  EXPECT_EQ(allocationsDuring([&] { ASSERT_TRUE(sampler.sample(q)); }), 0);
+}
+
+}  // namespace
+}  // namespace kaboum
