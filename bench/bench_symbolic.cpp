@@ -1,6 +1,6 @@
 // Symbolic planner benchmarks: Stacked n Objects per search mode (thesis Table 6.4) and the IPC
 // classical instances of /work/shared/pddl/classical when present (coverage against Fast
-// Downward's recorded figures, see docs/benchmarks-symbolic.md). Counters: solved, plan length,
+// Downward's recorded figures, see docs/benchmarks.md, "Symbolic planning"). Counters: solved, plan length,
 // expanded and generated states.
 #include <benchmark/benchmark.h>
 

@@ -1,8 +1,8 @@
 #include "kaboum/kinematics/urdf_loader.hpp"
 
 #include <console_bridge/console.h>
-#include <dlfcn.h>
 #include <urdf_model/model.h>
+#include <urdf_parser/urdf_parser.h>
 #include <urdf_world/types.h>
 
 #include <cmath>
@@ -20,68 +20,29 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// urdfdom's parser is reached through dlopen: the build links no urdfdom library yet (the
-// top-level CMake files are not this module's to edit). Both symbols are the Debian 12 ABI.
-class UrdfdomParser {
- public:
-  static UrdfdomParser& instance() {
-    static UrdfdomParser parser;
-    return parser;
-  }
-
-  // Parses `xml`; on failure returns null and the messages urdfdom logged.
-  urdf::ModelInterfaceSharedPtr parse(const std::string& xml, std::string& errors) {
-    const std::lock_guard lock(mutex_);
-    if (parse_ == nullptr) {
-      errors = "cannot load urdfdom (liburdfdom-dev): " + loadError_;
-      return nullptr;
-    }
-    MessageCollector collector;
-    useOutputHandler_(&collector);
-    urdf::ModelInterfaceSharedPtr model;
-    try {
-      model = parse_(xml);
-    } catch (const std::exception& e) {
-      collector.messages += std::string(e.what()) + "; ";
-    }
-    useOutputHandler_(nullptr);
-    errors = collector.messages;
-    return model;
-  }
-
- private:
-  using ParseFunction = urdf::ModelInterfaceSharedPtr (*)(const std::string&);
-  using UseOutputHandlerFunction = void (*)(console_bridge::OutputHandler*);
-
+// urdfdom reports problems through console_bridge; this collects its error messages for one parse
+// (console_bridge's handler is global, hence the lock).
+urdf::ModelInterfaceSharedPtr parseWithUrdfdom(const std::string& xml, std::string& errors) {
   struct MessageCollector : console_bridge::OutputHandler {
     std::string messages;
     void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
       if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR) messages += text + "; ";
     }
   };
-
-  UrdfdomParser() {
-    void* library = dlopen("liburdfdom_model.so.3.0", RTLD_NOW | RTLD_LOCAL);
-    void* bridge = dlopen("libconsole_bridge.so.1.0", RTLD_NOW | RTLD_LOCAL);
-    if (library == nullptr || bridge == nullptr) {
-      loadError_ = dlerror();
-      return;
-    }
-    parse_ = reinterpret_cast<ParseFunction>(dlsym(
-        library, "_ZN4urdf9parseURDFERKNSt7__cxx1112basic_stringIcSt11char_traitsIcESaIcEEE"));
-    useOutputHandler_ = reinterpret_cast<UseOutputHandlerFunction>(
-        dlsym(bridge, "_ZN14console_bridge16useOutputHandlerEPNS_13OutputHandlerE"));
-    if (parse_ == nullptr || useOutputHandler_ == nullptr) {
-      parse_ = nullptr;
-      loadError_ = "urdf::parseURDF or console_bridge::useOutputHandler not found";
-    }
+  static std::mutex mutex;
+  const std::lock_guard lock(mutex);
+  MessageCollector collector;
+  console_bridge::useOutputHandler(&collector);
+  urdf::ModelInterfaceSharedPtr model;
+  try {
+    model = urdf::parseURDF(xml);
+  } catch (const std::exception& e) {
+    collector.messages += std::string(e.what()) + "; ";
   }
-
-  std::mutex mutex_;
-  ParseFunction parse_ = nullptr;
-  UseOutputHandlerFunction useOutputHandler_ = nullptr;
-  std::string loadError_;
-};
+  console_bridge::restorePreviousOutputHandler();
+  errors = collector.messages;
+  return model;
+}
 
 Pose toPose(const urdf::Pose& pose) {
   double x = 0, y = 0, z = 0, w = 1;
@@ -267,7 +228,7 @@ void addJoints(const urdf::Joint& source, int parent, int child, const std::stri
 RobotModel parseUrdf(const std::string& xml, const std::string& sourceName,
                      const std::string& baseDir) {
   std::string errors;
-  const urdf::ModelInterfaceSharedPtr model = UrdfdomParser::instance().parse(xml, errors);
+  const urdf::ModelInterfaceSharedPtr model = parseWithUrdfdom(xml, errors);
   if (!model) {
     if (errors.size() >= 2) errors.resize(errors.size() - 2);
     throw InputError(
