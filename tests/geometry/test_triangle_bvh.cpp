@@ -1,3 +1,4 @@
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -276,6 +277,234 @@ TEST(TrianglesMeetBesideSharedVertex, FindsFoldsThroughTheVertex) {
   EXPECT_TRUE(trianglesMeetBesideSharedVertex(s, p1, q1, Vec3(0.5, 0.1, 0), Vec3(0.1, 0.5, 0)));
   EXPECT_FALSE(trianglesMeetBesideSharedVertex(s, p1, q1, Vec3(-1, 1, 0), Vec3(-1, 0, 0)));
   EXPECT_FALSE(trianglesMeetBesideSharedVertex(s, p1, q1, Vec3(0, -1, 0), Vec3(-1, -1, 0)));
+}
+
+TEST(TrianglesIntersect, ContactToleranceIsRelativeToTheLongestEdge) {
+  for (const double scale : {1e-3, 1.0, 1e3}) {
+    const Vec3 a0(0, 0, 0), a1(2 * scale, 0, 0), a2(0, 2 * scale, 0);
+    const double tolerance = 1e-12 * (a2 - a1).norm();  // of the longest edge
+    const auto apexAt = [&](double height) {
+      return trianglesIntersect(a0, a1, a2, Vec3(0.5, 0.5, height) * scale,
+                                Vec3(0.6 * scale, 0.5 * scale, scale),
+                                Vec3(0.5 * scale, 0.6 * scale, scale));
+    };
+    EXPECT_TRUE(apexAt(0.0)) << scale;
+    EXPECT_TRUE(apexAt(0.3 * tolerance / scale)) << scale;
+    EXPECT_FALSE(apexAt(3 * tolerance / scale)) << scale;
+    EXPECT_TRUE(apexAt(-3 * tolerance / scale)) << scale;  // pierces a little
+  }
+}
+
+// Two nearly coplanar triangles 0.2 apart, from a CAD mesh: a0 lies on the line through b0 and b2,
+// a2 is 3e-15 off b's plane. Ambiguous orientation signs once made the edge a2a0 count as meeting.
+TEST(TrianglesIntersect, NearlyCoplanarTrianglesFarApartAreDisjoint) {
+  const Vec3 a0(3.0801599999999998, 15.3644, -1.4746600000000001),
+      a1(3.0256799999997308, 15.356299999999958, -1.5568300000004052),
+      a2(2.9807757827301162, 15.364399999999993, -1.4746600000000427),
+      b0(2.7820800000000001, 15.3644, -1.4746600000000001),
+      b1(2.7386300000000001, 15.3558, -1.56138),
+      b2(2.6827200000000002, 15.3644, -1.4746600000000001);
+  EXPECT_FALSE(trianglesIntersect(a0, a1, a2, b0, b1, b2));
+  EXPECT_FALSE(trianglesIntersect(b0, b1, b2, a0, a1, a2));
+  EXPECT_FALSE(trianglesIntersect(a2, a0, a1, b2, b0, b1));
+  // Slid along the line b0b2 until a0 lies on the edge b0b2, they touch.
+  const Vec3 slide(-0.3, 0, 0);
+  ASSERT_EQ((a0 + slide).tail<2>(), b0.tail<2>());
+  EXPECT_TRUE(trianglesIntersect(a0 + slide, a1 + slide, a2 + slide, b0, b1, b2));
+  EXPECT_TRUE(trianglesIntersect(b0, b1, b2, a0 + slide, a1 + slide, a2 + slide));
+}
+
+// Distance from segment pq to triangle abc by golden-section search along the segment (distance
+// to a convex set is convex along a line): independent of the predicates' closed forms.
+double segmentTriangleDistance(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,
+                               const Vec3& c) {
+  const auto distanceAt = [&](double s) {
+    const Vec3 x = p + s * (q - p);
+    return (closestPointOnTriangle(x, a, b, c) - x).norm();
+  };
+  const double ratio = (std::sqrt(5.0) - 1.0) / 2.0;
+  double lo = 0.0, hi = 1.0;
+  double s1 = hi - ratio * (hi - lo), s2 = lo + ratio * (hi - lo);
+  double d1 = distanceAt(s1), d2 = distanceAt(s2);
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    if (d1 <= d2) {
+      hi = s2;
+      s2 = s1;
+      d2 = d1;
+      s1 = hi - ratio * (hi - lo);
+      d1 = distanceAt(s1);
+    } else {
+      lo = s1;
+      s1 = s2;
+      d1 = d2;
+      s2 = lo + ratio * (hi - lo);
+      d2 = distanceAt(s2);
+    }
+  }
+  return std::min({d1, d2, distanceAt(0.0), distanceAt(1.0)});
+}
+
+using Corners = std::array<Vec3, 3>;
+
+// The distance between two triangles is that of an edge of one to the other.
+double triangleDistance(const Corners& a, const Corners& b) {
+  double best = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    best = std::min({best, segmentTriangleDistance(a[k], a[(k + 1) % 3], b[0], b[1], b[2]),
+                     segmentTriangleDistance(b[k], b[(k + 1) % 3], a[0], a[1], a[2])});
+  }
+  return best;
+}
+
+double longestEdge(const Corners& t) {
+  return std::max({(t[1] - t[0]).norm(), (t[2] - t[1]).norm(), (t[0] - t[2]).norm()});
+}
+
+std::string describe(std::initializer_list<Vec3> points) {
+  std::string text;
+  for (const Vec3& p : points) {
+    text += fmt::format("({:.17g}, {:.17g}, {:.17g}) ", p.x(), p.y(), p.z());
+  }
+  return text;
+}
+
+// Random nearly coplanar shapes, where tolerant predicates go wrong: points of a plane far from
+// the origin, each lifted off it by 0 or by +-10^[-15, -4]. Half the planes contain the x axis
+// and snap the in-plane coordinates to a 1/8 grid, so that corners share coordinates and lie
+// exactly on lines through other corners, as in CAD meshes; the other half are rotated at random.
+class NearlyCoplanar {
+ public:
+  explicit NearlyCoplanar(std::uint64_t seed) : engine_(seed) {}
+
+  void newPlane() {
+    origin_ = Vec3(3.0, 15.36, -1.47) + 10.0 * Vec3(unit(), unit(), unit());
+    grid_ = unit() < 0.5;
+    const double angle = grid_ && unit() < 0.3 ? 0.0 : std::numbers::pi * unit();
+    const Eigen::Matrix3d rotation =
+        grid_ ? Eigen::AngleAxisd(angle, Vec3::UnitX()).toRotationMatrix()
+              : Eigen::AngleAxisd(angle, Vec3(unit(), unit(), unit()).normalized())
+                    .toRotationMatrix();
+    u_ = rotation.col(0);
+    v_ = rotation.col(1);
+    normal_ = rotation.col(2);
+  }
+
+  // A point at in-plane coordinates (x, y), snapped to the grid for grid planes, then lifted.
+  Vec3 point(double x, double y) {
+    if (grid_) {
+      x = std::round(8.0 * x) / 8.0;
+      y = std::round(8.0 * y) / 8.0;
+    }
+    const double lift =
+        unit() < 0.3 ? 0.0 : (unit() < 0.5 ? -1.0 : 1.0) * std::pow(10.0, -15.0 + 11.0 * unit());
+    return origin_ + x * u_ + y * v_ + lift * normal_;
+  }
+
+  // A triangle of size 0.25 to 1.4 around in-plane (x, y), not thin: |normal| >= 0.01 * longest
+  // edge^2.
+  Corners triangle(double x, double y) {
+    while (true) {
+      const Corners t{point(x + unit() - 0.5, y + unit() - 0.5),
+                      point(x + unit() - 0.5, y + unit() - 0.5),
+                      point(x + unit() - 0.5, y + unit() - 0.5)};
+      const double longest = longestEdge(t);
+      if (longest >= 0.25 && (t[1] - t[0]).cross(t[2] - t[0]).norm() >= 0.01 * longest * longest) {
+        return t;
+      }
+    }
+  }
+
+  double unit() { return unitDistribution_(engine_); }
+
+ private:
+  std::mt19937_64 engine_;
+  std::uniform_real_distribution<double> unitDistribution_{0.0, 1.0};
+  Vec3 origin_, u_, v_, normal_;
+  bool grid_ = false;
+};
+
+// Answers of a contact predicate, for two orders of the same corners, checked against the
+// reference distance: coming within 1e-12 of the size (the longest edge involved) counts as
+// meeting, checked below 0.5e-12 clear of rounding, and a pair reported as meeting is never
+// farther apart than 1.5e-12 of the size. In between, rounding may tip either answer.
+struct AgreementTally {
+  std::size_t contacts = 0, nearMisses = 0;  // answers "meet", and "apart" within 1e-4 * size
+
+  ::testing::AssertionResult record(bool meet, bool meetReordered, double distance, double size) {
+    contacts += meet ? 1 : 0;
+    nearMisses += !meet && distance < 1e-4 * size ? 1 : 0;
+    for (const bool answer : {meet, meetReordered}) {
+      if (answer && distance > 1.5e-12 * size) {
+        return ::testing::AssertionFailure() << "meet at distance " << distance / size << " * size";
+      }
+      if (!answer && distance <= 0.5e-12 * size) {
+        return ::testing::AssertionFailure()
+               << "apart at distance " << distance / size << " * size";
+      }
+    }
+    return ::testing::AssertionSuccess();
+  }
+};
+
+TEST(TrianglesIntersect, NearlyCoplanarAnswersAgreeWithTheDistance) {
+  NearlyCoplanar shapes(21);
+  AgreementTally tally;
+  for (int trial = 0; trial < 5000; ++trial) {
+    shapes.newPlane();
+    const Corners a = shapes.triangle(0.0, 0.0);
+    const Corners b = shapes.triangle(2.0 * shapes.unit() - 1.0, 2.0 * shapes.unit() - 1.0);
+    const double size = std::max(longestEdge(a), longestEdge(b));
+    const double distance = triangleDistance(a, b);
+    ASSERT_TRUE(tally.record(trianglesIntersect(a[0], a[1], a[2], b[0], b[1], b[2]),
+                             trianglesIntersect(b[2], b[0], b[1], a[1], a[2], a[0]), distance,
+                             size))
+        << describe({a[0], a[1], a[2], b[0], b[1], b[2]});
+  }
+  EXPECT_GT(tally.contacts, 200u);
+  EXPECT_GT(tally.nearMisses, 200u);
+}
+
+TEST(SegmentIntersectsTriangle, NearlyCoplanarAnswersAgreeWithTheDistance) {
+  NearlyCoplanar shapes(22);
+  AgreementTally tally;
+  for (int trial = 0; trial < 10000; ++trial) {
+    shapes.newPlane();
+    const Corners t = shapes.triangle(0.0, 0.0);
+    const Vec3 p = shapes.point(3.0 * shapes.unit() - 1.5, 3.0 * shapes.unit() - 1.5);
+    const Vec3 q = shapes.point(3.0 * shapes.unit() - 1.5, 3.0 * shapes.unit() - 1.5);
+    const double size = std::max(longestEdge(t), (q - p).norm());
+    const double distance = segmentTriangleDistance(p, q, t[0], t[1], t[2]);
+    ASSERT_TRUE(tally.record(segmentIntersectsTriangle(p, q, t[0], t[1], t[2]),
+                             segmentIntersectsTriangle(q, p, t[1], t[2], t[0]), distance, size))
+        << describe({p, q, t[0], t[1], t[2]});
+  }
+  EXPECT_GT(tally.contacts, 300u);
+  EXPECT_GT(tally.nearMisses, 300u);
+}
+
+TEST(TrianglesMeetBesideSharedVertex, NearlyCoplanarAnswersAgreeWithTheDistance) {
+  NearlyCoplanar shapes(23);
+  AgreementTally tally;
+  for (int trial = 0; trial < 10000; ++trial) {
+    shapes.newPlane();
+    const Corners first = shapes.triangle(0.0, 0.0);
+    const Vec3& s = first[0];
+    Corners second = shapes.triangle(0.0, 0.0);
+    second[0] = s;
+    const double size = std::max(longestEdge(first), longestEdge(second));
+    if ((second[1] - s).cross(second[2] - s).norm() < 0.01 * size * size) continue;
+    // Beside s the triangles can only meet along the edges opposite it.
+    const double distance =
+        std::min(segmentTriangleDistance(first[1], first[2], s, second[1], second[2]),
+                 segmentTriangleDistance(second[1], second[2], s, first[1], first[2]));
+    ASSERT_TRUE(
+        tally.record(trianglesMeetBesideSharedVertex(s, first[1], first[2], second[1], second[2]),
+                     trianglesMeetBesideSharedVertex(s, second[2], second[1], first[1], first[2]),
+                     distance, size))
+        << describe({s, first[1], first[2], second[1], second[2]});
+  }
+  EXPECT_GT(tally.contacts, 300u);
+  EXPECT_GT(tally.nearMisses, 300u);
 }
 
 TEST(TriangleBvh, IntersectsTriangleMatchesBruteForce) {

@@ -12,9 +12,8 @@ namespace kaboum {
 
 namespace {
 
-using Vec2 = Eigen::Vector2d;
-
 constexpr double kSignTolerance = 1e-12;        // relative to the magnitude bound of a determinant
+constexpr double kContactTolerance = 1e-12;     // contact distance relative to the longest edge
 constexpr double kDegenerateTolerance = 1e-12;  // |normal| relative to longest edge^2
 constexpr double kThinTolerance = 1e-8;         // below this, closest points use the edges only
 constexpr std::uint32_t kLeafSize = 4;
@@ -25,14 +24,14 @@ double longestEdgeSquared(const Vec3& a, const Vec3& b, const Vec3& c) {
   return std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
 }
 
-// |n| <= tolerance * longestEdge^2, compared squared.
-bool isThin(const Vec3& normal, const Vec3& a, const Vec3& b, const Vec3& c, double tolerance) {
-  const double longest = longestEdgeSquared(a, b, c);
-  return normal.squaredNorm() <= tolerance * tolerance * longest * longest;
+// |normal| <= tolerance * longest edge^2, compared squared.
+bool isThin(double normalSquared, double longestSquared, double tolerance) {
+  return normalSquared <= tolerance * tolerance * longestSquared * longestSquared;
 }
 
 bool isDegenerate(const Vec3& a, const Vec3& b, const Vec3& c) {
-  return isThin((b - a).cross(c - a), a, b, c, kDegenerateTolerance);
+  return isThin((b - a).cross(c - a).squaredNorm(), longestEdgeSquared(a, b, c),
+                kDegenerateTolerance);
 }
 
 Vec3 closestPointOnSegment(const Vec3& p, const Vec3& a, const Vec3& b) {
@@ -42,84 +41,35 @@ Vec3 closestPointOnSegment(const Vec3& p, const Vec3& a, const Vec3& b) {
   return a + std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) * ab;
 }
 
-// Sign of `value`, or 0 when |value| <= kSignTolerance * bound.
-int toleranceSign(double value, double bound) {
-  const double tolerance = kSignTolerance * bound;
-  return value > tolerance ? 1 : (value < -tolerance ? -1 : 0);
-}
-
 // Sign of `value` when value^2 > kSignTolerance^2 * boundSquared, else 0 (no square roots).
 int toleranceSignSquared(double value, double boundSquared) {
   if (value * value <= kSignTolerance * kSignTolerance * boundSquared) return 0;
   return value > 0 ? 1 : -1;
 }
 
-// Sign of det[a-d, b-d, c-d] (positive when d is below the counter-clockwise triangle abc).
-int orientation(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+// det[a-d, b-d, c-d] = -(d - a) . ((b - a) x (c - a)), positive when d is below the
+// counter-clockwise triangle abc, and a bound on the magnitudes of its terms.
+struct Determinant {
+  double value, bound;
+};
+Determinant orientationDeterminant(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   const Vec3 ad = a - d, bd = b - d, cd = c - d;
-  const double determinant = ad.dot(bd.cross(cd));
-  const double bound = std::abs(ad.x()) * (std::abs(bd.y() * cd.z()) + std::abs(bd.z() * cd.y())) +
-                       std::abs(ad.y()) * (std::abs(bd.z() * cd.x()) + std::abs(bd.x() * cd.z())) +
-                       std::abs(ad.z()) * (std::abs(bd.x() * cd.y()) + std::abs(bd.y() * cd.x()));
-  return toleranceSign(determinant, bound);
+  return {ad.dot(bd.cross(cd)),
+          std::abs(ad.x()) * (std::abs(bd.y() * cd.z()) + std::abs(bd.z() * cd.y())) +
+              std::abs(ad.y()) * (std::abs(bd.z() * cd.x()) + std::abs(bd.x() * cd.z())) +
+              std::abs(ad.z()) * (std::abs(bd.x() * cd.y()) + std::abs(bd.y() * cd.x()))};
 }
 
-int orientation(const Vec2& a, const Vec2& b, const Vec2& c) {
-  const Vec2 ac = a - c, bc = b - c;
-  return toleranceSign(ac.x() * bc.y() - ac.y() * bc.x(),
-                       std::abs(ac.x() * bc.y()) + std::abs(ac.y() * bc.x()));
+// Sign of a determinant when it is exact (beyond kSignTolerance of its bound; rounding is ~1e-15
+// of it) and beyond sqrt(bandSquared), else 0.
+int signBeyond(const Determinant& det, double bandSquared) {
+  const double exactBound = kSignTolerance * det.bound;
+  if (det.value * det.value <= std::max(exactBound * exactBound, bandSquared)) return 0;
+  return det.value > 0.0 ? 1 : -1;
 }
 
 bool mixedSigns(int s0, int s1, int s2) {
   return (s0 > 0 || s1 > 0 || s2 > 0) && (s0 < 0 || s1 < 0 || s2 < 0);
-}
-
-// Projection onto the coordinate plane most parallel to a triangle with normal `normal`.
-struct PlaneProjection {
-  int u, v;
-  explicit PlaneProjection(const Vec3& normal) {
-    Eigen::Index dropped = 0;
-    normal.cwiseAbs().maxCoeff(&dropped);
-    u = static_cast<int>((dropped + 1) % 3);
-    v = static_cast<int>((dropped + 2) % 3);
-  }
-  [[nodiscard]] Vec2 operator()(const Vec3& p) const { return {p[u], p[v]}; }
-};
-
-bool pointInTriangle2(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
-  return !mixedSigns(orientation(a, b, p), orientation(b, c, p), orientation(c, a, p));
-}
-
-bool segmentsIntersect2(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b) {
-  const int pqa = orientation(p, q, a), pqb = orientation(p, q, b);
-  if (pqa * pqb > 0) return false;
-  const int abp = orientation(a, b, p), abq = orientation(a, b, q);
-  if (abp * abq > 0) return false;
-  if (pqa == 0 && pqb == 0) {  // collinear: compare the intervals along the longer extent
-    const Vec2 extent = (p - q).cwiseAbs().cwiseMax((a - b).cwiseAbs());
-    const int axis = extent.x() >= extent.y() ? 0 : 1;
-    return std::max(std::min(p[axis], q[axis]), std::min(a[axis], b[axis])) <=
-           std::min(std::max(p[axis], q[axis]), std::max(a[axis], b[axis]));
-  }
-  return true;
-}
-
-bool segmentIntersectsTriangle2(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b,
-                                const Vec2& c) {
-  return pointInTriangle2(p, a, b, c) || pointInTriangle2(q, a, b, c) ||
-         segmentsIntersect2(p, q, a, b) || segmentsIntersect2(p, q, b, c) ||
-         segmentsIntersect2(p, q, c, a);
-}
-
-// Coplanar triangles overlap when an edge of one meets the other, or one lies inside the other.
-bool coplanarTrianglesIntersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0,
-                                const Vec3& b1, const Vec3& b2) {
-  const PlaneProjection project((b1 - b0).cross(b2 - b0));
-  const Vec2 p0 = project(a0), p1 = project(a1), p2 = project(a2);
-  const Vec2 q0 = project(b0), q1 = project(b1), q2 = project(b2);
-  return segmentIntersectsTriangle2(p0, p1, q0, q1, q2) ||
-         segmentIntersectsTriangle2(p1, p2, q0, q1, q2) ||
-         segmentIntersectsTriangle2(p2, p0, q0, q1, q2) || pointInTriangle2(q0, p0, p1, p2);
 }
 
 double boxDistanceSquared(const Vec3& lo, const Vec3& hi, const Vec3& p) {
@@ -135,8 +85,9 @@ double surfaceArea(const Vec3& lo, const Vec3& hi) {
 
 Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 normal = (b - a).cross(c - a);
-  if (!isThin(normal, a, b, c, kThinTolerance) && normal.dot((b - a).cross(p - a)) >= 0.0 &&
-      normal.dot((c - b).cross(p - b)) >= 0.0 && normal.dot((a - c).cross(p - c)) >= 0.0) {
+  if (!isThin(normal.squaredNorm(), longestEdgeSquared(a, b, c), kThinTolerance) &&
+      normal.dot((b - a).cross(p - a)) >= 0.0 && normal.dot((c - b).cross(p - b)) >= 0.0 &&
+      normal.dot((a - c).cross(p - c)) >= 0.0) {
     return p - normal * (normal.dot(p - a) / normal.squaredNorm());
   }
   const Vec3 onAb = closestPointOnSegment(p, a, b);
@@ -150,48 +101,203 @@ Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const V
 
 namespace {
 
-// segmentIntersectsTriangle for a triangle already known not to be degenerate.
-bool segmentMeetsTriangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,
-                          const Vec3& c) {
-  const int sideP = orientation(a, b, c, p), sideQ = orientation(a, b, c, q);
-  if (sideP * sideQ > 0) return false;
-  if (sideP == 0 && sideQ == 0) {
-    const PlaneProjection project((b - a).cross(c - a));
-    return segmentIntersectsTriangle2(project(p), project(q), project(a), project(b), project(c));
+// A triangle with its normal (b - a) x (c - a) and longest edge, as the contact tests use it.
+struct ContactTriangle {
+  ContactTriangle(const Vec3& a0, const Vec3& b0, const Vec3& c0)
+      : a(a0),
+        b(b0),
+        c(c0),
+        normal((b - a).cross(c - a)),
+        normalSquared(normal.squaredNorm()),
+        longestSquared(longestEdgeSquared(a, b, c)) {}
+  [[nodiscard]] bool degenerate() const {
+    return isThin(normalSquared, longestSquared, kDegenerateTolerance);
   }
-  // The segment meets the plane; it meets the triangle if its line passes inside all three edges.
-  return !mixedSigns(orientation(p, q, a, b), orientation(p, q, b, c), orientation(p, q, c, a));
+  Vec3 a, b, c, normal;
+  double normalSquared, longestSquared;
+};
+
+// Contact distance for shapes whose longest edge is sqrt(longestSquared).
+double contactTolerance(double longestSquared) {
+  return kContactTolerance * std::sqrt(longestSquared);
+}
+
+// Side of x relative to the plane of t: +1 or -1 when x is certainly farther than `tolerance`
+// from the plane on that side, else 0.
+int sideBeyond(const ContactTriangle& t, const Vec3& x, double tolerance) {
+  // The determinant is -|normal| * the height of x above the plane.
+  return signBeyond(orientationDeterminant(t.a, t.b, t.c, x),
+                    tolerance * tolerance * t.normalSquared);
+}
+
+// Side of the line pq relative to the line uv, the sign of det[p-v, q-v, u-v], when it is
+// exact and the lines are farther apart than `tolerance` (|det| = |(q - p) x (v - u)| * their
+// distance), else 0.
+int lineSideBeyond(const Vec3& p, const Vec3& q, const Vec3& u, const Vec3& v, double tolerance) {
+  return signBeyond(orientationDeterminant(p, q, u, v),
+                    tolerance * tolerance * (q - p).cross(v - u).squaredNorm());
+}
+
+enum class Crossing { inside, outside, undecided };
+
+// Where segment pq, whose ends lie farther than `tolerance` on opposite sides of t's plane, crosses
+// it: inside t, or outside and farther than tolerance from every edge of t (so pq stays farther
+// than that from t), as exact signs show however shallow the crossing; else undecided.
+Crossing properCrossing(const Vec3& p, const Vec3& q, const ContactTriangle& t, double tolerance) {
+  const int ab = lineSideBeyond(p, q, t.a, t.b, tolerance),
+            bc = lineSideBeyond(p, q, t.b, t.c, tolerance),
+            ca = lineSideBeyond(p, q, t.c, t.a, tolerance);
+  if (ab == 0 || bc == 0 || ca == 0) return Crossing::undecided;
+  return ab == bc && bc == ca ? Crossing::inside : Crossing::outside;
+}
+
+// Segment pq crosses the plane of t at a point inside t, with the crossing point computed in
+// floating point (a point of pq within rounding of the plane, however shallow the crossing).
+bool crossingPointInside(const Vec3& p, const Vec3& q, const ContactTriangle& t) {
+  const double hp = t.normal.dot(p - t.a), hq = t.normal.dot(q - t.a);
+  if (!((hp < 0.0 && hq > 0.0) || (hp > 0.0 && hq < 0.0))) return false;
+  const Vec3 x = p + (hp / (hp - hq)) * (q - p);
+  return t.normal.dot((t.b - t.a).cross(x - t.a)) >= 0.0 &&
+         t.normal.dot((t.c - t.b).cross(x - t.b)) >= 0.0 &&
+         t.normal.dot((t.a - t.c).cross(x - t.c)) >= 0.0;
+}
+
+double pointTriangleDistanceSquared(const Vec3& x, const ContactTriangle& t) {
+  return (closestPointOnTriangle(x, t.a, t.b, t.c) - x).squaredNorm();
+}
+
+double pointSegmentDistanceSquared(const Vec3& x, const Vec3& u, const Vec3& v) {
+  return (closestPointOnSegment(x, u, v) - x).squaredNorm();
+}
+
+// Squared distance from segment uv to the point of segment pq nearest the line uv (clamped to
+// pq): the segments' distance when it is attained inside both, else an upper bound. Computed
+// through (q - p) x (v - u), whose relative error ~1e-16 / angle only slides that point along
+// pq by an amount the angle shrinks back, so the result stays accurate for nearly parallel pairs.
+double innerSegmentDistanceSquared(const Vec3& p, const Vec3& q, const Vec3& u, const Vec3& v) {
+  const Vec3 pq = q - p, uv = v - u, normal = pq.cross(uv);
+  const double normal2 = normal.squaredNorm();
+  const double s =
+      normal2 > 0.0 ? std::clamp((u - p).cross(uv).dot(normal) / normal2, 0.0, 1.0) : 0.0;
+  return pointSegmentDistanceSquared(p + s * pq, u, v);
+}
+
+// Segment pq comes within `tolerance` of t. Its distance to t is attained at a crossing of the
+// inside, at an end of pq, at a corner of t or between pq and an edge of t; every candidate is a
+// pair of actual points, so a true answer is never farther than tolerance plus rounding.
+bool segmentWithin(const Vec3& p, const Vec3& q, const ContactTriangle& t, double tolerance) {
+  const double tolerance2 = tolerance * tolerance;
+  if (crossingPointInside(p, q, t)) return true;
+  if (pointTriangleDistanceSquared(p, t) <= tolerance2) return true;
+  if (pointTriangleDistanceSquared(q, t) <= tolerance2) return true;
+  const std::array<const Vec3*, 3> corners{&t.a, &t.b, &t.c};
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 &u = *corners[k], &v = *corners[(k + 1) % 3];
+    if (innerSegmentDistanceSquared(p, q, u, v) <= tolerance2 ||
+        pointSegmentDistanceSquared(u, p, q) <= tolerance2) {
+      return true;
+    }
+  }
+  return false;
+}
+
+// Segment pq touches the non-degenerate triangle t within `tolerance`: exact signs decide clear
+// cases (one side of the plane, or a proper crossing); near contacts are decided by distance.
+bool segmentTouches(const Vec3& p, const Vec3& q, const ContactTriangle& t, double tolerance) {
+  const int sideP = sideBeyond(t, p, tolerance), sideQ = sideBeyond(t, q, tolerance);
+  if (sideP * sideQ > 0) return false;
+  if (sideP * sideQ < 0) {
+    const Crossing crossing = properCrossing(p, q, t, tolerance);
+    if (crossing != Crossing::undecided) return crossing == Crossing::inside;
+  }
+  return segmentWithin(p, q, t, tolerance);
+}
+
+// Triangles s and t come within `tolerance`: the crossing of an edge of one through the other,
+// a corner of one near the other, or a pair of edges near each other inside both.
+bool trianglesWithin(const ContactTriangle& s, const ContactTriangle& t, double tolerance) {
+  const double tolerance2 = tolerance * tolerance;
+  const std::array<const Vec3*, 3> sCorners{&s.a, &s.b, &s.c}, tCorners{&t.a, &t.b, &t.c};
+  for (int k = 0; k < 3; ++k) {
+    if (crossingPointInside(*sCorners[k], *sCorners[(k + 1) % 3], t) ||
+        crossingPointInside(*tCorners[k], *tCorners[(k + 1) % 3], s)) {
+      return true;
+    }
+  }
+  for (int k = 0; k < 3; ++k) {
+    if (pointTriangleDistanceSquared(*sCorners[k], t) <= tolerance2 ||
+        pointTriangleDistanceSquared(*tCorners[k], s) <= tolerance2) {
+      return true;
+    }
+  }
+  for (int k = 0; k < 3; ++k) {
+    for (int l = 0; l < 3; ++l) {
+      if (innerSegmentDistanceSquared(*sCorners[k], *sCorners[(k + 1) % 3], *tCorners[l],
+                                      *tCorners[(l + 1) % 3]) <= tolerance2) {
+        return true;
+      }
+    }
+  }
+  return false;
 }
 
 }  // namespace
 
 bool segmentIntersectsTriangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,
                                const Vec3& c) {
-  return !isDegenerate(a, b, c) && segmentMeetsTriangle(p, q, a, b, c);
+  const ContactTriangle t(a, b, c);
+  if (t.degenerate()) return false;
+  return segmentTouches(p, q, t,
+                        contactTolerance(std::max((q - p).squaredNorm(), t.longestSquared)));
 }
 
 bool trianglesIntersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0,
                         const Vec3& b1, const Vec3& b2) {
-  if (isDegenerate(a0, a1, a2) || isDegenerate(b0, b1, b2)) return false;
-  const int a0Side = orientation(b0, b1, b2, a0), a1Side = orientation(b0, b1, b2, a1),
-            a2Side = orientation(b0, b1, b2, a2);
-  if (a0Side * a1Side > 0 && a1Side * a2Side > 0) return false;
-  const int b0Side = orientation(a0, a1, a2, b0), b1Side = orientation(a0, a1, a2, b1),
-            b2Side = orientation(a0, a1, a2, b2);
-  if (b0Side * b1Side > 0 && b1Side * b2Side > 0) return false;
-  if ((a0Side == 0 && a1Side == 0 && a2Side == 0) || (b0Side == 0 && b1Side == 0 && b2Side == 0)) {
-    return coplanarTrianglesIntersect(a0, a1, a2, b0, b1, b2);
+  const ContactTriangle a(a0, a1, a2), b(b0, b1, b2);
+  if (a.degenerate() || b.degenerate()) return false;
+  const double tolerance = contactTolerance(std::max(a.longestSquared, b.longestSquared));
+  const std::array<const Vec3*, 3> aCorners{&a0, &a1, &a2}, bCorners{&b0, &b1, &b2};
+  // Separated by a plane: every corner of one farther than the tolerance on one side of the other.
+  const auto sidesOf = [tolerance](const std::array<const Vec3*, 3>& corners,
+                                   const ContactTriangle& other) {
+    return std::array<int, 3>{sideBeyond(other, *corners[0], tolerance),
+                              sideBeyond(other, *corners[1], tolerance),
+                              sideBeyond(other, *corners[2], tolerance)};
+  };
+  const auto oneSide = [](const std::array<int, 3>& s) {
+    return s[0] * s[1] > 0 && s[1] * s[2] > 0;
+  };
+  const std::array<int, 3> aSides = sidesOf(aCorners, b);
+  if (oneSide(aSides)) return false;
+  const std::array<int, 3> bSides = sidesOf(bCorners, a);
+  if (oneSide(bSides)) return false;
+  // Their distance is that of an edge of one to the other. Exact signs show an edge crossing the
+  // other's inside, or keep it farther than the tolerance: beyond it on one side of the plane, or
+  // crossing outside; only when some edge is left undecided are distances computed.
+  const auto edgeCrossing = [tolerance](const std::array<const Vec3*, 3>& corners,
+                                        const std::array<int, 3>& sides,
+                                        const ContactTriangle& other, int k) {
+    const int next = (k + 1) % 3, ends = sides[k] * sides[next];
+    if (ends > 0) return Crossing::outside;  // beyond the tolerance on one side
+    if (ends == 0) return Crossing::undecided;
+    return properCrossing(*corners[k], *corners[next], other, tolerance);
+  };
+  bool undecided = false;
+  for (int k = 0; k < 3; ++k) {
+    const Crossing ofA = edgeCrossing(aCorners, aSides, b, k),
+                   ofB = edgeCrossing(bCorners, bSides, a, k);
+    if (ofA == Crossing::inside || ofB == Crossing::inside) return true;
+    undecided = undecided || ofA == Crossing::undecided || ofB == Crossing::undecided;
   }
-  // Non-coplanar: the intersection segment, if any, ends on an edge of one of the triangles.
-  return segmentMeetsTriangle(a0, a1, b0, b1, b2) || segmentMeetsTriangle(a1, a2, b0, b1, b2) ||
-         segmentMeetsTriangle(a2, a0, b0, b1, b2) || segmentMeetsTriangle(b0, b1, a0, a1, a2) ||
-         segmentMeetsTriangle(b1, b2, a0, a1, a2) || segmentMeetsTriangle(b2, b0, a0, a1, a2);
+  return undecided && trianglesWithin(a, b, tolerance);
 }
 
 bool trianglesMeetBesideSharedVertex(const Vec3& s, const Vec3& p1, const Vec3& q1, const Vec3& p2,
                                      const Vec3& q2) {
-  if (isDegenerate(s, p1, q1) || isDegenerate(s, p2, q2)) return false;
-  return segmentMeetsTriangle(p1, q1, s, p2, q2) || segmentMeetsTriangle(p2, q2, s, p1, q1);
+  const ContactTriangle first(s, p1, q1), second(s, p2, q2);
+  if (first.degenerate() || second.degenerate()) return false;
+  const double tolerance = contactTolerance(std::max(first.longestSquared, second.longestSquared));
+  return segmentTouches(p1, q1, second, tolerance) || segmentTouches(p2, q2, first, tolerance);
 }
 
 bool meshTrianglesIntersect(const std::array<Vec3, 3>& t, const Triangle& tIds,

@@ -17,16 +17,20 @@ namespace kaboum {
 // use the edges only, so zero-area triangles are handled as segments or points.
 Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 
-// Closed segment/triangle and triangle/triangle intersection (touching counts). Orientation signs
-// within 1e-12 of their magnitude bound count as zero, so contacts closer than about 1e-12 of the
-// triangle size are reported as contacts. Zero-area triangles (|(b-a) x (c-a)| <= 1e-12 * longest
-// edge^2, as mesh analysis defines them) have no reliable plane and never intersect anything.
+// Closed segment/triangle and triangle/triangle intersection with a contact tolerance: true when
+// the two come within 1e-12 of the longest edge involved (so touching counts), false when they are
+// farther apart than that, up to rounding: ~1e-16 of the size divided by the thinness
+// |(b-a) x (c-a)| / longest edge^2 of the triangles. Exact orientation signs reject pairs apart on
+// either side of a plane and accept proper crossings; the rest is decided by distances between
+// actual points, never by an ambiguous sign. Zero-area triangles (thinness <= 1e-12, as mesh
+// analysis defines them) have no reliable plane and never intersect anything.
 bool segmentIntersectsTriangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,
                                const Vec3& c);
 bool trianglesIntersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0,
                         const Vec3& b1, const Vec3& b2);
 // Triangles (s, p1, q1) and (s, p2, q2) sharing only the vertex s meet somewhere else: then their
-// intersection runs from s to a point of the edge p1q1 or p2q2, so it suffices to test those edges.
+// intersection runs from s to a point of the edge p1q1 or p2q2, so it suffices to test those edges
+// (each against the other triangle, with the contact tolerance above).
 bool trianglesMeetBesideSharedVertex(const Vec3& s, const Vec3& p1, const Vec3& q1, const Vec3& p2,
                                      const Vec3& q2);
 
