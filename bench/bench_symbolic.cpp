@@ -1,7 +1,7 @@
 // Symbolic planner benchmarks: Stacked n Objects per search mode (thesis Table 6.4) and the IPC
 // classical instances of /work/shared/pddl/classical when present (coverage against Fast
-// Downward's recorded figures, see docs/benchmarks.md, "Symbolic planning"). Counters: solved, plan length,
-// expanded and generated states.
+// Downward's recorded figures, see docs/benchmarks.md, "Symbolic planning"). Counters: solved, plan
+// length, expanded and generated states.
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
