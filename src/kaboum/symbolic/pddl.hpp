@@ -39,6 +39,23 @@ struct NumExpr {
 
 enum class Comparison { Less, LessEqual, Equal, GreaterEqual, Greater };
 
+// Whether `lhs comparison rhs` holds.
+inline bool comparisonHolds(Comparison comparison, double lhs, double rhs) {
+  switch (comparison) {
+    case Comparison::Less:
+      return lhs < rhs;
+    case Comparison::LessEqual:
+      return lhs <= rhs;
+    case Comparison::Equal:
+      return lhs == rhs;
+    case Comparison::GreaterEqual:
+      return lhs >= rhs;
+    case Comparison::Greater:
+      return lhs > rhs;
+  }
+  return false;
+}
+
 struct Formula {
   enum class Kind {
     True,

@@ -69,26 +69,6 @@ double StateEvaluator::evaluate(const NumericCode& code, StateView state) {
   return top == 0 ? kUndefined : stack_[0];
 }
 
-namespace {
-
-bool compare(Comparison comparison, double lhs, double rhs) {
-  switch (comparison) {
-    case Comparison::Less:
-      return lhs < rhs;
-    case Comparison::LessEqual:
-      return lhs <= rhs;
-    case Comparison::Equal:
-      return lhs == rhs;
-    case Comparison::GreaterEqual:
-      return lhs >= rhs;
-    case Comparison::Greater:
-      return lhs > rhs;
-  }
-  return false;
-}
-
-}  // namespace
-
 bool StateEvaluator::holds(const Condition& condition, StateView state) {
   for (const AtomId atom : condition.positive) {
     if (!state.atom(atom)) return false;
@@ -104,7 +84,7 @@ bool StateEvaluator::holds(const Condition& condition, StateView state) {
     const double rhs = evaluate(test.rhs, state);
     // A comparison with an undefined value is false, and so is its negation.
     if (std::isnan(lhs) || std::isnan(rhs)) return false;
-    if (compare(test.comparison, lhs, rhs) != test.positive) return false;
+    if (comparisonHolds(test.comparison, lhs, rhs) != test.positive) return false;
   }
   for (const ModuleCheck& check : condition.moduleChecks) {
     const GroundModuleCall& call = task_.moduleCalls[check.call];

@@ -188,19 +188,7 @@ class Replay {
         const double lhs = number(formula.numbers[0], binding);
         const double rhs = number(formula.numbers[1], binding);
         if (std::isnan(lhs) || std::isnan(rhs)) return false;
-        switch (formula.comparison) {
-          case Comparison::Less:
-            return lhs < rhs;
-          case Comparison::LessEqual:
-            return lhs <= rhs;
-          case Comparison::Equal:
-            return lhs == rhs;
-          case Comparison::GreaterEqual:
-            return lhs >= rhs;
-          case Comparison::Greater:
-            return lhs > rhs;
-        }
-        return false;
+        return comparisonHolds(formula.comparison, lhs, rhs);
       }
       case Formula::Kind::Module: {
         const std::vector<ObjectId> args = resolveAll(formula.args, binding);
