@@ -27,7 +27,9 @@ LoadedMesh loadOrientedMesh(const std::string& path) {
                             "cannot be oriented consistently (non-orientable or "
                             "non-manifold surface)"));
   }
-  loaded.closed = analyzeMesh(loaded.mesh).closed;
+  const MeshAnalysis analysis = analyzeMesh(loaded.mesh);
+  loaded.closed = analysis.closed;
+  loaded.diagonal = analysis.diagonal;
   return loaded;
 }
 

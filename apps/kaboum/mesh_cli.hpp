@@ -19,6 +19,7 @@ struct LoadedMesh {
   TriangleMesh mesh;
   bool closed = false;
   bool orientationRepaired = false;
+  double diagonal = 0.0;  // bounding-box diagonal
 };
 
 // Reads a mesh and makes its orientation consistent and outward; InputError naming `path` if the

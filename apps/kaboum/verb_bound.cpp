@@ -55,12 +55,7 @@ int runBound(const BoundArgs& args) {
   options.merge = args.merge == "sum"    ? QuadricMerge::Sum
                   : args.merge == "full" ? QuadricMerge::Full
                                          : QuadricMerge::Constant;
-  Vec3 lo = mesh.vertices[0], hi = mesh.vertices[0];
-  for (const Vec3& v : mesh.vertices) {
-    lo = lo.cwiseMin(v);
-    hi = hi.cwiseMax(v);
-  }
-  const double diagonal = (hi - lo).norm();
+  const double diagonal = loaded.diagonal;
   if (args.vertices > 0) options.targetVertices = args.vertices;
   if (args.ratio > 0.0) {
     options.targetVertices =

@@ -27,7 +27,8 @@ int runCheck(const CheckArgs& args) {
   const HausdorffReport hausdorff =
       measureHausdorff(original.mesh, result, args.samples, args.seed);
   const bool violated =
-      containment.defined && (containment.violations > 0 || containment.selfIntersectingPairs > 0);
+      containment.defined && (containment.insideOut || containment.violations > 0 ||
+                              containment.selfIntersectingPairs > 0);
 
   if (args.json) {
     nlohmann::json out = {
@@ -40,6 +41,7 @@ int runCheck(const CheckArgs& args) {
         {"violations", containment.violations},
         {"worst_violation", containment.worstViolation},
         {"self_intersecting_pairs", containment.selfIntersectingPairs},
+        {"inside_out", containment.insideOut},
         {"verified", containment.defined && !violated},
         {"hausdorff", toJson(hausdorff)},
     };
@@ -49,6 +51,8 @@ int runCheck(const CheckArgs& args) {
         args.side == BoundSide::Outer ? "result contains original" : "original contains result";
     if (!containment.defined) {
       std::cout << fmt::format("containment: not defined — {}\n", containment.note);
+    } else if (containment.insideOut) {
+      std::cout << fmt::format("containment: VIOLATED: {}\n", containment.note);
     } else if (violated) {
       std::cout << fmt::format(
           "containment: VIOLATED ({}): {} of {} samples outside (worst {:.4g}), {} "

@@ -67,6 +67,22 @@ TEST(BoundCli, OuterAndInnerResultsAreVerifiedByCheck) {
   EXPECT_NE(wrong.out.find("VIOLATED"), std::string::npos) << wrong.out;
 }
 
+TEST(BoundCli, CheckRejectsAnInsideOutResult) {
+  ScratchDir dir;
+  const std::string out = dir.file("spot-outer.obj");
+  ASSERT_EQ(runCli(dir, "bound " + data("spot.obj") + " -o '" + out + "' --ratio 0.2 -q").exitCode,
+            0);
+  TriangleMesh flipped = readMesh(out);
+  for (Triangle& t : flipped.triangles) std::swap(t[1], t[2]);
+  writeMesh(flipped, dir.file("flipped.obj"));
+  const CliResult r =
+      runCli(dir, "check " + data("spot.obj") + " '" + dir.file("flipped.obj") + "' --json");
+  EXPECT_EQ(r.exitCode, 1) << r.out << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["inside_out"].get<bool>());
+  EXPECT_FALSE(j["verified"].get<bool>());
+}
+
 TEST(BoundCli, EpsilonIsADistanceInPercentOfTheDiagonal) {
   ScratchDir dir;
   const CliResult r = runCli(dir, "bound " + data("fandisk.obj") + " -o '" + dir.file("f.obj") +

@@ -214,6 +214,24 @@ TEST(VerifyContainment, ToleranceAcceptsNearSurfaceSamples) {
             0u);
 }
 
+TEST(VerifyContainment, AnInsideOutMeshIsAViolation) {
+  // A larger sphere encloses the smaller one, but with its faces turned inward it is no bound.
+  const TriangleMesh sphere = makeIcosphere(2);
+  const TriangleMesh larger = transformMesh(sphere, 1.2, Vec3::Zero(), Vec3::Zero());
+  const ContainmentReport good = verifyContainment(sphere, larger, BoundSide::Outer, 200, kSeed);
+  EXPECT_FALSE(good.insideOut);
+  EXPECT_EQ(good.violations, 0u);
+  const ContainmentReport flipped =
+      verifyContainment(sphere, flipMesh(larger), BoundSide::Outer, 200, kSeed);
+  EXPECT_TRUE(flipped.defined);
+  EXPECT_TRUE(flipped.insideOut);
+  EXPECT_NE(flipped.note.find("result is inside out"), std::string::npos) << flipped.note;
+  const ContainmentReport flippedInner =
+      verifyContainment(flipMesh(larger), sphere, BoundSide::Inner, 200, kSeed);
+  EXPECT_TRUE(flippedInner.insideOut);
+  EXPECT_NE(flippedInner.note.find("original is inside out"), std::string::npos);
+}
+
 TEST(VerifyContainment, IsUndefinedForOpenContainers) {
   const TriangleMesh open = makeOpenBox(Vec3(0, 0, 0), Vec3(1, 1, 1), 2);
   const TriangleMesh closed = makeBox(Vec3(-1, -1, -1), Vec3(2, 2, 2));

@@ -217,4 +217,14 @@ MeshAnalysis analyzeMesh(const TriangleMesh& mesh) {
   return result;
 }
 
+double boundingBoxDiagonal(const TriangleMesh& mesh) {
+  if (mesh.vertices.empty()) return 0.0;
+  Vec3 lo = mesh.vertices.front(), hi = lo;
+  for (const Vec3& v : mesh.vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  return (hi - lo).norm();
+}
+
 }  // namespace kaboum

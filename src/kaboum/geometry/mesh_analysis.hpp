@@ -28,6 +28,10 @@ struct MeshAnalysis {
 
 MeshAnalysis analyzeMesh(const TriangleMesh& mesh);
 
+// Bounding-box diagonal of all vertices (0 for none): the length unit of relative tolerances and
+// of distances reported "in % of the diagonal". Cheaper than a full analyzeMesh.
+double boundingBoxDiagonal(const TriangleMesh& mesh);
+
 // True for a zero-area triangle: a repeated index, or |(b-a)x(c-a)| <= 1e-12 * (longest edge)^2
 // (collinear up to rounding).
 bool isDegenerateTriangle(const TriangleMesh& mesh, const Triangle& triangle);

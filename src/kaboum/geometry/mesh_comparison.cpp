@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "kaboum/core/error.hpp"
+#include "kaboum/geometry/mesh_analysis.hpp"
 #include "kaboum/geometry/surface_sampling.hpp"
 #include "kaboum/geometry/triangle_bvh.hpp"
 
@@ -38,16 +39,6 @@ TriangleBvh buildBvh(const TriangleMesh& mesh, const char* role) {
   } catch (const InputError& error) {
     throw InputError(fmt::format("{} {}", role, error.what()));
   }
-}
-
-double boundingBoxDiagonal(const TriangleMesh& mesh) {
-  if (mesh.vertices.empty()) return 0.0;
-  Vec3 lo = mesh.vertices.front(), hi = lo;
-  for (const Vec3& v : mesh.vertices) {
-    lo = lo.cwiseMin(v);
-    hi = hi.cwiseMax(v);
-  }
-  return (hi - lo).norm();
 }
 
 // Undirected edges whose two directions are not used equally often: border edges and edges
@@ -150,6 +141,19 @@ ContainmentReport verifyContainment(const TriangleMesh& original, const Triangle
     return report;
   }
   report.defined = true;
+  // A closed mesh whose faces point inward has negative signed volume; the winding-number inside
+  // test would still call its interior "inside", so this must be caught here.
+  const double originalVolume = analyzeMesh(original).volume;
+  const double resultVolume = analyzeMesh(result).volume;
+  const bool resultClosed = side == BoundSide::Outer || countUnbalancedEdges(result) == 0;
+  if (originalVolume < 0.0 || (resultClosed && resultVolume < 0.0)) {
+    report.insideOut = true;
+    report.note = fmt::format(
+        "the {} is inside out (negative signed volume: its faces point "
+        "inward)",
+        originalVolume < 0.0 ? "original" : "result");
+    return report;
+  }
 
   const double onSurface = tolerance < 0 ? 1e-9 * boundingBoxDiagonal(original) : tolerance;
   const bool outer = side == BoundSide::Outer;

@@ -30,7 +30,10 @@ struct ContainmentReport {
   // an outer bound): containment is only defined for closed meshes. Closed means every directed
   // edge (a, b) is matched by as many (b, a): no border, consistently oriented.
   bool defined = false;
-  std::string note;  // plain-language reason when !defined
+  std::string note;  // plain-language reason when !defined or insideOut
+  // A closed mesh the check relies on points its faces inward (negative signed volume): a
+  // violation, reported without sampling.
+  bool insideOut = false;
   std::size_t checked = 0, violations = 0;
   double worstViolation = 0;  // largest distance to the container of a sample outside it
   std::size_t selfIntersectingPairs = 0;  // countSelfIntersections(result), for either side
