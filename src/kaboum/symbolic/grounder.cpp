@@ -37,10 +37,12 @@ struct JoinLiteral {
 
 class Grounder {
  public:
-  Grounder(const Domain& domain, const Problem& problem, std::size_t maxDisjuncts)
+  Grounder(const Domain& domain, const Problem& problem, std::size_t maxDisjuncts,
+           std::span<const int> varyingPredicates)
       : domain_(domain),
         problem_(problem),
         maxDisjuncts_(maxDisjuncts),
+        varyingPredicates_(varyingPredicates),
         relationCount_(domain.predicates.size() + domain.functions.size()),
         reachable_(relationCount_),
         tuples_(relationCount_) {}
@@ -114,6 +116,7 @@ class Grounder {
     fluentPredicate_.assign(domain_.predicates.size(), false);
     fluentFunction_.assign(domain_.functions.size(), false);
     for (const Action& action : domain_.actions) markEffects(action.effect);
+    for (const int predicate : varyingPredicates_) fluentPredicate_[predicate] = true;
     objectsOfType_.resize(domain_.types.size());
     for (std::size_t t = 0; t < domain_.types.size(); ++t) {
       objectsOfType_[t] = problem_.objectsOfType(domain_, static_cast<int>(t));
@@ -683,6 +686,9 @@ class Grounder {
 
   // Initial atoms, fluent values and the relaxed facts of object fluents.
   void finishFluents() {
+    for (const int predicate : varyingPredicates_) {
+      for (const Tuple& tuple : tuples_[predicate]) atomId(predicate, tuple);
+    }
     for (const GroundAtom& atom : problem_.init) {
       const auto it = atomIds_.find({atom.predicate, atom.args});
       if (it != atomIds_.end()) task_.initialAtoms.push_back(it->second);
@@ -708,6 +714,7 @@ class Grounder {
   const Domain& domain_;
   const Problem& problem_;
   std::size_t maxDisjuncts_;
+  std::span<const int> varyingPredicates_;
   std::size_t relationCount_;
   std::vector<std::set<Tuple>> reachable_;
   std::vector<std::vector<Tuple>> tuples_;
@@ -727,8 +734,9 @@ class Grounder {
 
 }  // namespace
 
-GroundTask ground(const Domain& domain, const Problem& problem, std::size_t maxDisjuncts) {
-  return Grounder(domain, problem, maxDisjuncts).run();
+GroundTask ground(const Domain& domain, const Problem& problem, std::size_t maxDisjuncts,
+                  std::span<const int> varyingPredicates) {
+  return Grounder(domain, problem, maxDisjuncts, varyingPredicates).run();
 }
 
 }  // namespace kaboum::symbolic

@@ -196,6 +196,9 @@ struct Problem {
 // errors, undefined names, arity mismatches and unsupported requirements.
 Domain parseDomain(std::string_view text, const std::string& file);
 Problem parseProblem(std::string_view text, const std::string& file, const Domain& domain);
+// Same from already read S-expressions (front ends that rewrite the tree first, e.g. contingent).
+Domain parseDomain(const std::vector<SExpr>& top, const std::string& file);
+Problem parseProblem(const std::vector<SExpr>& top, const std::string& file, const Domain& domain);
 Domain loadDomain(const std::string& path);
 Problem loadProblem(const std::string& path, const Domain& domain);
 

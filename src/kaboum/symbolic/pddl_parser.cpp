@@ -415,10 +415,9 @@ class DomainParser : public Parser {
  public:
   using Parser::Parser;
 
-  Domain parse(std::string_view text) {
+  Domain parse(const std::vector<SExpr>& top) {
     domain_.file = file_;
     domain_.types.push_back({"object", -1});
-    const std::vector<SExpr> top = readSExprs(text, file_);
     if (top.empty()) throw InputError(locate(file_, "expected '(define (domain NAME) ...)'"));
     if (top.size() > 1) fail(top[1], "expected end of file after the domain definition");
     const SExpr& define = top[0];
@@ -662,11 +661,10 @@ class ProblemParser : public Parser {
  public:
   ProblemParser(const std::string& file, const Domain& domain) : Parser(file), domain_(domain) {}
 
-  Problem parse(std::string_view text) {
+  Problem parse(const std::vector<SExpr>& top) {
     problem_.file = file_;
     problem_.objectNames = domain_.constantNames;
     problem_.objectTypes = domain_.constantTypes;
-    const std::vector<SExpr> top = readSExprs(text, file_);
     if (top.empty()) throw InputError(locate(file_, "expected '(define (problem NAME) ...)'"));
     if (top.size() > 1) fail(top[1], "expected end of file after the problem definition");
     const SExpr& define = top[0];
@@ -830,11 +828,19 @@ std::vector<ObjectId> Problem::objectsOfType(const Domain& domain, int type) con
 }
 
 Domain parseDomain(std::string_view text, const std::string& file) {
-  return DomainParser(file).parse(text);
+  return DomainParser(file).parse(readSExprs(text, file));
 }
 
 Problem parseProblem(std::string_view text, const std::string& file, const Domain& domain) {
-  return ProblemParser(file, domain).parse(text);
+  return ProblemParser(file, domain).parse(readSExprs(text, file));
+}
+
+Domain parseDomain(const std::vector<SExpr>& top, const std::string& file) {
+  return DomainParser(file).parse(top);
+}
+
+Problem parseProblem(const std::vector<SExpr>& top, const std::string& file, const Domain& domain) {
+  return ProblemParser(file, domain).parse(top);
 }
 
 Domain loadDomain(const std::string& path) {

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -124,7 +125,10 @@ struct GroundTask {
 
 // Grounds with relaxed-reachability pruning (only operators whose preconditions can hold in the
 // delete relaxation are produced). Throws InputError when a formula's disjunctive normal form
-// exceeds `maxDisjuncts`.
-GroundTask ground(const Domain& domain, const Problem& problem, std::size_t maxDisjuncts = 4096);
+// exceeds `maxDisjuncts`. `varyingPredicates` are kept as atoms even if no action changes them
+// (their initial value may be unknown, as in contingent problems), instead of being folded, and
+// each of their reachable atoms gets an id even if no condition or effect mentions it.
+GroundTask ground(const Domain& domain, const Problem& problem, std::size_t maxDisjuncts = 4096,
+                  std::span<const int> varyingPredicates = {});
 
 }  // namespace kaboum::symbolic

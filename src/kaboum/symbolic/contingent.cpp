@@ -1,0 +1,513 @@
+#include "kaboum/symbolic/contingent.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <functional>
+#include <map>
+#include <set>
+#include <unordered_map>
+
+#include "kaboum/core/error.hpp"
+#include "kaboum/symbolic/heuristic.hpp"
+
+namespace kaboum::symbolic {
+namespace {
+
+struct BeliefHash {
+  std::size_t operator()(const Belief& belief) const {
+    std::uint64_t h = 1469598103934665603ull;
+    for (const std::uint32_t w : belief) h = (h ^ w) * 1099511628211ull;
+    return static_cast<std::size_t>(h);
+  }
+};
+
+struct LimitReached {
+  SearchStatus status;
+};
+
+class AndOrSearch {
+ public:
+  AndOrSearch(KnowledgeTask& task, const ContingentOptions& options)
+      : task_(task),
+        options_(options),
+        heuristic_(makeHeuristic(options.heuristic, task.task())),
+        start_(std::chrono::steady_clock::now()) {}
+
+  ContingentResult run() {
+    ContingentResult result;
+    try {
+      result.plan.root = solve(intern(Belief(task_.initialBelief())), 0);
+      result.status = result.plan.root >= 0 ? SearchStatus::Solved : SearchStatus::Unsolvable;
+    } catch (const LimitReached& limit) {
+      result.status = limit.status;
+      result.plan.root = -1;
+    }
+    if (result.status == SearchStatus::Solved) result.plan.nodes = std::move(nodes_);
+    stats_.beliefs = beliefs_.size();
+    stats_.worlds = task_.worldCount();
+    stats_.seconds = elapsed();
+    result.statistics = stats_;
+    return result;
+  }
+
+ private:
+  // Result of one action: a tree of branches over the atoms it lets the agent observe.
+  struct Outcome {
+    AtomId atom = -1;  // -1: a leaf knowledge state
+    int belief = -1;
+    int onTrue = -1;
+    int onFalse = -1;
+  };
+  struct Candidate {
+    int score = 0;
+    int op = 0;
+    int root = 0;  // index into the candidate's outcomes
+    std::vector<Outcome> outcomes;
+  };
+
+  double elapsed() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+  int intern(Belief&& belief) {
+    const auto [it, added] = ids_.try_emplace(std::move(belief), static_cast<int>(beliefs_.size()));
+    if (added) {
+      beliefs_.push_back(&it->first);
+      solved_.push_back(-1);
+      state_.push_back(kOpen);
+    }
+    return it->second;
+  }
+
+  int heuristic(const Belief& belief) {
+    int worst = 0;
+    for (const std::uint32_t w : belief) {
+      if (w >= worldValue_.size()) worldValue_.resize(task_.worldCount(), -1);
+      if (worldValue_[w] < 0) {
+        worldValue_[w] = heuristic_->evaluate(task_.world(w), nullptr);
+        ++stats_.evaluated;
+      }
+      worst = std::max(worst, worldValue_[w]);
+      if (worst == Heuristic::kDeadEnd) break;
+    }
+    return worst;
+  }
+
+  // Splits `belief` eagerly on every atom the agent now knows whether (Figure 3.2's branch(φ)).
+  int outcome(Belief&& belief, std::vector<Outcome>& out) {
+    const AtomId atom = task_.pendingObservation(belief);
+    const int index = static_cast<int>(out.size());
+    out.push_back({});
+    if (atom < 0) {
+      out[index].belief = intern(std::move(belief));
+      return index;
+    }
+    Belief onTrue;
+    Belief onFalse;
+    task_.split(atom, belief, onTrue, onFalse);
+    out[index].atom = atom;
+    const int t = outcome(std::move(onTrue), out);
+    const int f = outcome(std::move(onFalse), out);
+    out[index].onTrue = t;
+    out[index].onFalse = f;
+    return index;
+  }
+
+  int addNode(PlanTree::Node node) {
+    nodes_.push_back(node);
+    return static_cast<int>(nodes_.size()) - 1;
+  }
+
+  int solveOutcome(const std::vector<Outcome>& outcomes, int index, std::size_t depth) {
+    const Outcome& o = outcomes[index];
+    if (o.atom < 0) return solve(o.belief, depth);
+    const int t = solveOutcome(outcomes, o.onTrue, depth);
+    if (t < 0) return -1;
+    const int f = solveOutcome(outcomes, o.onFalse, depth);
+    if (f < 0) return -1;
+    PlanTree::Node node;
+    node.kind = PlanTree::Node::Kind::Branch;
+    node.atom = o.atom;
+    node.next = t;
+    node.onFalse = f;
+    return addNode(node);
+  }
+
+  void checkLimits() const {
+    if (stats_.expanded >= options_.limits.expansions) throw LimitReached{SearchStatus::NodeLimit};
+    if ((stats_.expanded & 63) == 0 && elapsed() > options_.limits.seconds) {
+      throw LimitReached{SearchStatus::TimeLimit};
+    }
+    const std::size_t bytes = task_.worldCount() * 8 * 4 + beliefs_.size() * 64;
+    if (bytes > options_.limits.memoryBytes) throw LimitReached{SearchStatus::MemoryLimit};
+  }
+
+  int solve(int id, std::size_t depth) {
+    if (solved_[id] >= 0) {
+      ++stats_.reused;
+      return solved_[id];
+    }
+    if (state_[id] != kOpen || depth > options_.maxDepth) return -1;
+    const Belief& belief = *beliefs_[id];
+    if (task_.isGoal(belief)) {
+      solved_[id] = addNode({});
+      return solved_[id];
+    }
+    checkLimits();
+    ++stats_.expanded;
+    state_[id] = kOnPath;
+    std::vector<Candidate> candidates;
+    Belief next;
+    for (std::size_t op = 0; op < task_.task().operators.size(); ++op) {
+      if (!task_.applicable(static_cast<int>(op), belief)) continue;
+      if (!task_.apply(static_cast<int>(op), belief, next) || next == belief) continue;
+      ++stats_.generated;
+      Candidate candidate;
+      candidate.op = static_cast<int>(op);
+      candidate.root = outcome(Belief(next), candidate.outcomes);
+      for (const Outcome& o : candidate.outcomes) {
+        if (o.atom < 0) candidate.score = std::max(candidate.score, heuristic(*beliefs_[o.belief]));
+      }
+      if (candidate.score == Heuristic::kDeadEnd) {
+        ++stats_.deadEnds;
+        continue;
+      }
+      candidates.push_back(std::move(candidate));
+    }
+    // Sensing first: splitting only adds knowledge, so a plan for the unsplit state also works in
+    // every branch; among the rest, the lowest worst-world heuristic value first.
+    std::stable_sort(candidates.begin(), candidates.end(),
+                     [](const Candidate& a, const Candidate& b) {
+                       const bool aSenses = a.outcomes.size() > 1;
+                       const bool bSenses = b.outcomes.size() > 1;
+                       if (aSenses != bSenses) return aSenses;
+                       return a.score < b.score;
+                     });
+    for (const Candidate& candidate : candidates) {
+      const int rest = solveOutcome(candidate.outcomes, candidate.root, depth + 1);
+      if (rest < 0) continue;
+      PlanTree::Node node;
+      node.kind = PlanTree::Node::Kind::Action;
+      node.op = candidate.op;
+      node.next = rest;
+      state_[id] = kOpen;
+      solved_[id] = addNode(node);
+      return solved_[id];
+    }
+    state_[id] = kFailed;
+    return -1;
+  }
+
+  static constexpr char kOpen = 0;
+  static constexpr char kOnPath = 1;
+  static constexpr char kFailed = 2;
+
+  KnowledgeTask& task_;
+  const ContingentOptions& options_;
+  std::unique_ptr<Heuristic> heuristic_;
+  std::chrono::steady_clock::time_point start_;
+  std::unordered_map<Belief, int, BeliefHash> ids_;
+  std::vector<const Belief*> beliefs_;
+  std::vector<int> solved_;  // plan node of each solved knowledge state, -1 otherwise
+  std::vector<char> state_;
+  std::vector<int> worldValue_;
+  std::vector<PlanTree::Node> nodes_;
+  ContingentStatistics stats_;
+};
+
+// Nodes reachable from the root, each with how many edges enter it.
+std::vector<int> inDegrees(const PlanTree& plan) {
+  std::vector<int> degree(plan.nodes.size(), 0);
+  std::vector<int> stack{plan.root};
+  degree[plan.root] = 1;
+  while (!stack.empty()) {
+    const PlanTree::Node& node = plan.nodes[stack.back()];
+    stack.pop_back();
+    for (const int child : {node.next, node.onFalse}) {
+      if (child < 0) continue;
+      if (degree[child]++ == 0) stack.push_back(child);
+    }
+  }
+  degree[plan.root] -= 1;
+  return degree;
+}
+
+}  // namespace
+
+ContingentResult solveContingent(KnowledgeTask& task, const ContingentOptions& options) {
+  return AndOrSearch(task, options).run();
+}
+
+TreeMetrics measure(const PlanTree& plan) {
+  TreeMetrics out;
+  if (plan.root < 0) return out;
+  struct Sizes {
+    double actions = 0, branches = 0, leaves = 0;
+    std::size_t depth = 0;
+  };
+  std::vector<Sizes> memo(plan.nodes.size());
+  std::vector<char> done(plan.nodes.size(), 0);
+  const std::function<const Sizes&(int)> visit = [&](int index) -> const Sizes& {
+    if (done[index]) return memo[index];
+    const PlanTree::Node& node = plan.nodes[index];
+    Sizes s;
+    if (node.kind == PlanTree::Node::Kind::Goal) {
+      s.leaves = 1;
+    } else if (node.kind == PlanTree::Node::Kind::Action) {
+      s = visit(node.next);
+      s.actions += 1;
+      s.depth += 1;
+    } else {
+      const Sizes t = visit(node.next);
+      const Sizes& f = visit(node.onFalse);
+      s = {t.actions + f.actions, t.branches + f.branches + 1, t.leaves + f.leaves,
+           std::max(t.depth, f.depth)};
+    }
+    done[index] = 1;
+    memo[index] = s;
+    return memo[index];
+  };
+  const Sizes& root = visit(plan.root);
+  out.actions = root.actions;
+  out.branches = root.branches;
+  out.leaves = root.leaves;
+  out.depth = root.depth;
+  out.dagNodes = static_cast<std::size_t>(std::count(done.begin(), done.end(), 1));
+  return out;
+}
+
+std::string formatPlanTree(const KnowledgeTask& task, const PlanTree& plan) {
+  if (plan.root < 0) return "";
+  const std::vector<int> degree = inDegrees(plan);
+  std::vector<char> printed(plan.nodes.size(), 0);
+  std::vector<std::string> lines{"(plan"};
+  const std::function<void(int, int)> sequence = [&](int index, int indent) {
+    const std::string pad(static_cast<std::size_t>(indent), ' ');
+    while (true) {
+      if (degree[index] >= 2) {
+        const std::string label = "n" + std::to_string(index);
+        if (printed[index]) {
+          lines.push_back(pad + "(goto " + label + ")");
+          return;
+        }
+        printed[index] = 1;
+        lines.push_back(pad + "(label " + label + ")");
+      }
+      const PlanTree::Node& node = plan.nodes[index];
+      if (node.kind == PlanTree::Node::Kind::Goal) return;
+      if (node.kind == PlanTree::Node::Kind::Action) {
+        lines.push_back(pad + "(" + task.task().operators[node.op].name + ")");
+        index = node.next;
+        continue;
+      }
+      lines.push_back(pad + "(branch " + task.task().atomNames[node.atom]);
+      lines.push_back(pad + "  (true");
+      sequence(node.next, indent + 4);
+      lines.back() += ")";
+      lines.push_back(pad + "  (false");
+      sequence(node.onFalse, indent + 4);
+      lines.back() += "))";
+      return;
+    }
+  };
+  sequence(plan.root, 2);
+  lines.back() += ")";
+  std::string out;
+  for (const std::string& line : lines) out += line + "\n";
+  return out;
+}
+
+nlohmann::json planTreeJson(const KnowledgeTask& task, const PlanTree& plan) {
+  nlohmann::json nodes = nlohmann::json::array();
+  if (plan.root < 0) return {{"root", nullptr}, {"nodes", nodes}};
+  const std::vector<int> degree = inDegrees(plan);
+  for (std::size_t i = 0; i < plan.nodes.size(); ++i) {
+    if (degree[i] == 0 && static_cast<int>(i) != plan.root) continue;
+    const PlanTree::Node& node = plan.nodes[i];
+    nlohmann::json entry = {{"id", i}};
+    if (node.kind == PlanTree::Node::Kind::Goal) {
+      entry["kind"] = "goal";
+    } else if (node.kind == PlanTree::Node::Kind::Action) {
+      entry["kind"] = "action";
+      entry["action"] = "(" + task.task().operators[node.op].name + ")";
+      entry["next"] = node.next;
+    } else {
+      entry["kind"] = "branch";
+      entry["atom"] = task.task().atomNames[node.atom];
+      entry["on_true"] = node.next;
+      entry["on_false"] = node.onFalse;
+    }
+    nodes.push_back(std::move(entry));
+  }
+  return {{"root", plan.root}, {"nodes", nodes}};
+}
+
+PlanTree parsePlanTree(std::string_view text, const std::string& file, const KnowledgeTask& task) {
+  const std::vector<SExpr> top = readSExprs(text, file);
+  const auto fail = [&](const SExpr& where, const std::string& what) {
+    throw InputError(locate(file, what, where.pos.line, where.pos.column));
+  };
+  if (top.size() != 1 || !top[0].startsWith("plan")) {
+    if (top.empty()) throw InputError(locate(file, "expected '(plan …)'"));
+    fail(top[0], "expected one '(plan …)'");
+  }
+  PlanTree plan;
+  std::map<std::string, int> labels;
+  std::vector<std::pair<int, const SExpr*>> gotos;
+  const auto add = [&](PlanTree::Node node) {
+    plan.nodes.push_back(node);
+    return static_cast<int>(plan.nodes.size()) - 1;
+  };
+  const std::function<int(const SExpr&, std::size_t)> sequence = [&](const SExpr& list,
+                                                                     std::size_t i) -> int {
+    if (i == list.items.size()) {
+      PlanTree::Node goal;
+      goal.pos = list.pos;
+      return add(goal);
+    }
+    const SExpr& item = list.items[i];
+    if (!item.isList() || item.items.empty()) fail(item, "expected an action, branch or label");
+    const bool last = i + 1 == list.items.size();
+    if (item.startsWith("label") || item.startsWith("goto")) {
+      if (item.items.size() != 2 || !item.items[1].isAtom()) fail(item, "expected a label name");
+      const std::string& name = item.items[1].text;
+      if (item.startsWith("goto")) {
+        if (!last) fail(list.items[i + 1], "nothing may follow '(goto …)'");
+        PlanTree::Node placeholder;
+        placeholder.pos = item.pos;
+        const int index = add(placeholder);
+        gotos.push_back({index, &item});
+        return index;
+      }
+      if (labels.count(name) > 0) fail(item, "duplicate label '" + name + "'");
+      labels[name] = -1;
+      const int index = sequence(list, i + 1);
+      labels[name] = index;
+      return index;
+    }
+    if (item.startsWith("branch")) {
+      if (!last) fail(list.items[i + 1], "nothing may follow a branch");
+      if (item.items.size() != 4 || !item.items[2].startsWith("true") ||
+          !item.items[3].startsWith("false")) {
+        fail(item, "expected '(branch (p …) (true …) (false …))'");
+      }
+      PlanTree::Node node;
+      node.kind = PlanTree::Node::Kind::Branch;
+      node.pos = item.pos;
+      node.atom = task.findAtom(toString(item.items[1]));
+      if (node.atom < 0) fail(item.items[1], "unknown atom " + toString(item.items[1]));
+      node.next = sequence(item.items[2], 1);
+      node.onFalse = sequence(item.items[3], 1);
+      return add(node);
+    }
+    PlanTree::Node node;
+    node.kind = PlanTree::Node::Kind::Action;
+    node.pos = item.pos;
+    node.op = task.findOperator(toString(item));
+    if (node.op < 0) fail(item, "unknown or never applicable action " + toString(item));
+    node.next = sequence(list, i + 1);
+    return add(node);
+  };
+  plan.root = sequence(top[0], 1);
+  for (const auto& [index, item] : gotos) {
+    const auto it = labels.find(item->items[1].text);
+    if (it == labels.end() || it->second < 0) {
+      fail(*item, "undefined label '" + item->items[1].text + "' (labels must come first)");
+    }
+    const SourcePos pos = plan.nodes[index].pos;
+    plan.nodes[index] = plan.nodes[it->second];
+    plan.nodes[index].pos = pos;
+  }
+  return plan;
+}
+
+TreeValidation validatePlanTree(KnowledgeTask& task, const PlanTree& plan,
+                                const std::string& file) {
+  TreeValidation out;
+  std::set<std::pair<int, Belief>> checked;
+  std::vector<char> onPath(plan.nodes.size(), 0);
+  const auto at = [&](const PlanTree::Node& node, const std::string& what) {
+    return locate(file, what, node.pos.line, node.pos.column);
+  };
+  const std::function<std::string(int, const Belief&)> walk = [&](int index, const Belief& belief) {
+    if (!checked.insert({index, belief}).second) return std::string();
+    const PlanTree::Node& node = plan.nodes[index];
+    if (onPath[index]) return at(node, "the plan loops");
+    onPath[index] = 1;
+    std::string failure;
+    if (node.kind == PlanTree::Node::Kind::Goal) {
+      if (!task.isGoal(belief)) failure = at(node, "this branch ends without knowing the goal");
+    } else if (node.kind == PlanTree::Node::Kind::Action) {
+      const std::string name = "(" + task.task().operators[node.op].name + ")";
+      Belief next;
+      const std::vector<int>& variants = task.variants(node.op);
+      const auto op = std::find_if(variants.begin(), variants.end(),
+                                   [&](int v) { return task.applicable(v, belief); });
+      if (op == variants.end()) {
+        failure = at(node, "precondition of " + name + " is not known to hold");
+      } else if (!task.apply(*op, belief, next)) {
+        failure = at(node, "an attachment reports " + name + " infeasible");
+      } else {
+        failure = walk(node.next, next);
+      }
+    } else {
+      const std::string& atom = task.task().atomNames[node.atom];
+      if (!task.knowsWhether(node.atom, belief)) {
+        failure = at(node, "branch on " + atom + ", whose value no sensing action observed");
+      } else {
+        Belief onTrue;
+        Belief onFalse;
+        task.split(node.atom, belief, onTrue, onFalse);
+        if (!onTrue.empty()) failure = walk(node.next, onTrue);
+        if (failure.empty() && !onFalse.empty()) failure = walk(node.onFalse, onFalse);
+      }
+    }
+    onPath[index] = 0;
+    return failure;
+  };
+  out.message = walk(plan.root, task.initialBelief());
+  out.valid = out.message.empty();
+  out.metrics = measure(plan);
+  return out;
+}
+
+Execution executePlanTree(KnowledgeTask& task, const PlanTree& plan, std::uint32_t world) {
+  Execution out;
+  int index = plan.root;
+  constexpr std::size_t kMaxSteps = 1000000;
+  while (out.steps.size() < kMaxSteps) {
+    const PlanTree::Node& node = plan.nodes[index];
+    if (node.kind == PlanTree::Node::Kind::Goal) {
+      out.reachedGoal = task.isGoalIn(world);
+      if (!out.reachedGoal) out.message = "the plan ended but the goal does not hold";
+      return out;
+    }
+    if (node.kind == PlanTree::Node::Kind::Branch) {
+      const bool value = task.world(world).atom(node.atom);
+      out.steps.push_back("branch " + task.task().atomNames[node.atom] + " -> " +
+                          (value ? "true" : "false"));
+      index = value ? node.next : node.onFalse;
+      continue;
+    }
+    const std::string name = "(" + task.task().operators[node.op].name + ")";
+    const std::vector<int>& variants = task.variants(node.op);
+    const auto op = std::find_if(variants.begin(), variants.end(), [&](int v) {
+      return task.holdsIn(task.task().operators[v].precondition, world);
+    });
+    if (op == variants.end()) {
+      out.message = "precondition of " + name + " is false in the true state";
+      return out;
+    }
+    world = task.applyIn(*op, world);
+    if (world == PackedSet::kMissing) {
+      out.message = "an attachment reports " + name + " infeasible";
+      return out;
+    }
+    out.steps.push_back(name);
+    index = node.next;
+  }
+  out.message = "execution exceeded " + std::to_string(kMaxSteps) + " steps";
+  return out;
+}
+
+}  // namespace kaboum::symbolic

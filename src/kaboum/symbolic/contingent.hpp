@@ -1,0 +1,102 @@
+// Branched plans over knowledge states (thesis §3.3.1 and Figure 3.2; seed 003 §III-A): AND–OR
+// search that branches on sensed atoms, shares solved sub-problems between branches, and a
+// validator that checks every branch and simulates execution against hidden true states.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "kaboum/symbolic/knowledge.hpp"
+#include "kaboum/symbolic/search.hpp"
+
+namespace kaboum::symbolic {
+
+// A plan as a DAG: an action node continues at `next`; a branch node on `atom` continues at
+// `next` when the atom is observed true and at `onFalse` otherwise; a goal node ends the branch.
+// Nodes reached from several places are solved sub-problems shared between branches.
+struct PlanTree {
+  struct Node {
+    enum class Kind { Goal, Action, Branch };
+    Kind kind = Kind::Goal;
+    int op = -1;       // Action: ground operator
+    AtomId atom = -1;  // Branch: observed atom
+    int next = -1;
+    int onFalse = -1;
+    SourcePos pos;  // where a parsed plan wrote the node
+  };
+  std::vector<Node> nodes;
+  int root = -1;
+};
+
+// Sizes of the plan unfolded into a tree (shared nodes counted once per path through them).
+struct TreeMetrics {
+  double actions = 0;     // action nodes in the unfolded tree
+  double branches = 0;    // branch nodes in the unfolded tree
+  double leaves = 0;      // goal leaves = execution paths
+  std::size_t depth = 0;  // most actions on one path
+  std::size_t dagNodes = 0;
+};
+TreeMetrics measure(const PlanTree& plan);
+
+struct ContingentOptions {
+  std::string heuristic = "ff";  // one of heuristicNames(), evaluated per world (maximum)
+  SearchLimits limits;
+  std::size_t maxDepth = 5000;  // actions on one path
+};
+
+struct ContingentStatistics {
+  std::size_t expanded = 0;   // knowledge states expanded
+  std::size_t generated = 0;  // successor knowledge states
+  std::size_t evaluated = 0;  // per-world heuristic evaluations
+  std::size_t deadEnds = 0;
+  std::size_t reused = 0;  // solved sub-problems shared
+  std::size_t beliefs = 0;
+  std::size_t worlds = 0;
+  double seconds = 0.0;
+};
+
+struct ContingentResult {
+  SearchStatus status = SearchStatus::Unsolvable;
+  PlanTree plan;
+  ContingentStatistics statistics;
+};
+
+// Greedy depth-first AND–OR search: successors in order of the worst world's heuristic value,
+// sensing outcomes split eagerly into branch nodes, solved and failed knowledge states memoized.
+// Sound; incomplete where a knowledge state fails only because of a cycle on the current path.
+ContingentResult solveContingent(KnowledgeTask& task, const ContingentOptions& options);
+
+// The plan as an S-expression tree, one step per line, indented by branch depth:
+//   (plan (grasp o1) (senseweight o1)
+//     (branch (isspillable o1) (true (transferupright o1) …) (false …)))
+// A shared node is introduced by `(label nK)` at its first occurrence and reused by `(goto nK)`.
+std::string formatPlanTree(const KnowledgeTask& task, const PlanTree& plan);
+nlohmann::json planTreeJson(const KnowledgeTask& task, const PlanTree& plan);
+
+// Parses formatPlanTree's output. Throws InputError (file:line:col) for unknown actions, atoms,
+// labels and malformed branches.
+PlanTree parsePlanTree(std::string_view text, const std::string& file, const KnowledgeTask& task);
+
+struct TreeValidation {
+  bool valid = false;
+  std::string message;  // first failure: "file:line:col: …" of the step, or "" when valid
+  TreeMetrics metrics;
+};
+
+// Checks every branch from the initial knowledge: each action's precondition is known to hold,
+// each branch atom is known-whether (sensed), and every leaf knows the goal.
+TreeValidation validatePlanTree(KnowledgeTask& task, const PlanTree& plan, const std::string& file);
+
+struct Execution {
+  bool reachedGoal = false;
+  std::vector<std::string> steps;  // actions executed and "branch (p) -> true|false"
+  std::string message;             // why execution stopped early
+};
+
+// Executes the plan in one true initial world (from a hidden state), following branches by the
+// world's value of each sensed atom.
+Execution executePlanTree(KnowledgeTask& task, const PlanTree& plan, std::uint32_t world);
+
+}  // namespace kaboum::symbolic

@@ -1,0 +1,837 @@
+#include "kaboum/symbolic/knowledge.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <set>
+
+#include "kaboum/core/error.hpp"
+
+namespace kaboum::symbolic {
+namespace {
+
+[[noreturn]] void fail(const std::string& file, const SExpr& where, const std::string& what) {
+  throw InputError(locate(file, what, where.pos.line, where.pos.column));
+}
+
+SExpr atomNode(const std::string& text, SourcePos pos) {
+  SExpr out;
+  out.text = text;
+  out.original = text;
+  out.pos = pos;
+  return out;
+}
+
+// Rewrites the contingent dialect and PKS operators of one file's tree onto core PDDL.
+class Rewriter {
+ public:
+  explicit Rewriter(const std::string& file) : file_(file) {}
+
+  // (kw (p x)) -> (kw.p x), (kv (f x)) -> (kv.f x), (k φ) -> φ. In a precondition, a positive
+  // Kw query becomes (or (kw.p x) (p x) (not (p x))): sensed, known true or known false.
+  enum class Context { Effect, Precondition, Goal };
+  void queries(SExpr& expr, Context context, bool positive = true) {
+    if (!expr.isList() || expr.items.empty()) return;
+    const bool knowledge = expr.startsWith("kw") || expr.startsWith("kv") || expr.startsWith("k");
+    if (knowledge && expr.items.size() == 2 && expr.items[1].isList()) {
+      const std::string head = expr.items[0].text;
+      SExpr inner = expr.items[1];
+      if (head == "k") {
+        expr = std::move(inner);
+        queries(expr, context, positive);
+        return;
+      }
+      if (inner.items.empty() || !inner.items[0].isAtom() || inner.kind != SExpr::Kind::List) {
+        fail(file_, inner, "'" + head + "' takes one atom, e.g. (" + head + " (p ?x))");
+      }
+      const std::string name = inner.items[0].text;
+      (head == "kw" ? kwPredicates : kvFunctions).insert({name, inner.pos});
+      SExpr sensed = inner;
+      sensed.items[0].text = head + "." + name;
+      sensed.items[0].original = sensed.items[0].text;
+      if (head == "kw" && context == Context::Precondition && positive) {
+        SExpr negated;
+        negated.kind = SExpr::Kind::List;
+        negated.pos = inner.pos;
+        negated.items = {atomNode("not", inner.pos), inner};
+        expr.items = {atomNode("or", expr.pos), std::move(sensed), std::move(inner),
+                      std::move(negated)};
+        return;
+      }
+      expr = std::move(sensed);
+      return;
+    }
+    const bool negation = expr.startsWith("not");
+    for (SExpr& item : expr.items) queries(item, context, negation ? !positive : positive);
+  }
+
+  std::map<std::string, SourcePos> kwPredicates;
+  std::map<std::string, SourcePos> kvFunctions;
+
+ private:
+  const std::string& file_;
+};
+
+bool sameAtom(const SExpr& a, const SExpr& b) {
+  if (a.items.size() != b.items.size()) return false;
+  for (std::size_t i = 0; i < a.items.size(); ++i) {
+    if (!a.items[i].isAtom() || !b.items[i].isAtom() || a.items[i].text != b.items[i].text) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// Finds an add or delete of `observed` in an effect tree.
+const SExpr* findChange(const SExpr& effect, const SExpr& observed) {
+  if (!effect.isList() || effect.items.empty()) return nullptr;
+  if (sameAtom(effect, observed)) return &effect;
+  for (std::size_t i = effect.startsWith("when") ? 2 : 1; i < effect.items.size(); ++i) {
+    if (const SExpr* hit = findChange(effect.items[i], observed)) return hit;
+  }
+  return nullptr;
+}
+
+void rewriteAction(SExpr& action, Rewriter& rewriter, const std::string& file) {
+  std::vector<SExpr> kept;
+  std::vector<SExpr> observed;
+  SExpr* effect = nullptr;
+  std::size_t effectIndex = 0;
+  for (std::size_t i = 0; i < action.items.size(); ++i) {
+    SExpr& item = action.items[i];
+    if (i >= 2 && item.isAtom(":observe") && i + 1 < action.items.size()) {
+      SExpr& value = action.items[++i];
+      if (!value.isList() || value.items.empty()) fail(file, value, "expected an atom to observe");
+      if (value.startsWith("and")) {
+        observed.insert(observed.end(), value.items.begin() + 1, value.items.end());
+      } else {
+        observed.push_back(value);
+      }
+      continue;
+    }
+    if (i >= 2 && (item.isAtom(":precondition") || item.isAtom(":effect")) &&
+        i + 1 < action.items.size()) {
+      rewriter.queries(action.items[i + 1], item.isAtom(":effect")
+                                                ? Rewriter::Context::Effect
+                                                : Rewriter::Context::Precondition);
+      if (item.isAtom(":effect")) effectIndex = kept.size() + 1;
+    }
+    kept.push_back(std::move(item));
+  }
+  if (effectIndex > 0) effect = &kept[effectIndex];
+  if (observed.empty()) {
+    action.items = std::move(kept);
+    return;
+  }
+  SExpr conjunction;
+  conjunction.kind = SExpr::Kind::List;
+  conjunction.pos = observed.front().pos;
+  conjunction.items.push_back(atomNode("and", conjunction.pos));
+  for (SExpr& atom : observed) {
+    if (atom.kind != SExpr::Kind::List || atom.items.empty() || !atom.items[0].isAtom() ||
+        atom.startsWith("not")) {
+      fail(file, atom, "':observe' takes atoms, e.g. (p ?x)");
+    }
+    if (effect != nullptr) {
+      if (const SExpr* change = findChange(*effect, atom)) {
+        fail(file, *change,
+             "sensing action changes the atom it observes " + toString(atom) +
+                 "; observe in one action and change it in another");
+      }
+    }
+    rewriter.kwPredicates.insert({atom.items[0].text, atom.pos});
+    atom.items[0].text = "kw." + atom.items[0].text;
+    atom.items[0].original = atom.items[0].text;
+    conjunction.items.push_back(std::move(atom));
+  }
+  if (effect != nullptr) {
+    conjunction.items.push_back(std::move(*effect));
+    *effect = std::move(conjunction);
+  } else {
+    kept.push_back(atomNode(":effect", conjunction.pos));
+    kept.push_back(std::move(conjunction));
+  }
+  action.items = std::move(kept);
+}
+
+SExpr* section(SExpr& define, std::string_view key) {
+  for (std::size_t i = 2; i < define.items.size(); ++i) {
+    if (define.items[i].startsWith(key)) return &define.items[i];
+  }
+  return nullptr;
+}
+
+// Declares (kw.p …) for observed/queried predicates and (kv.f …) for queried functions.
+void declareKnowledgePredicates(SExpr& define, const Rewriter& rewriter, const std::string& file) {
+  SExpr* predicates = section(define, ":predicates");
+  SExpr* functions = section(define, ":functions");
+  std::vector<SExpr> added;
+  const auto copyDeclaration = [&](SExpr* from, const std::string& name, const std::string& prefix,
+                                   SourcePos use, const char* what) {
+    if (from != nullptr) {
+      for (std::size_t i = 1; i < from->items.size(); ++i) {
+        const SExpr& declaration = from->items[i];
+        if (declaration.startsWith(name)) {
+          SExpr copy = declaration;
+          copy.items[0].text = prefix + name;
+          copy.items[0].original = copy.items[0].text;
+          added.push_back(std::move(copy));
+          return;
+        }
+      }
+    }
+    throw InputError(
+        locate(file, std::string("undefined ") + what + " '" + name + "'", use.line, use.column));
+  };
+  for (const auto& [name, pos] : rewriter.kwPredicates) {
+    copyDeclaration(predicates, name, "kw.", pos, "predicate");
+  }
+  for (const auto& [name, pos] : rewriter.kvFunctions) {
+    copyDeclaration(functions, name, "kv.", pos, "function");
+  }
+  if (added.empty()) return;
+  if (predicates == nullptr) {
+    SExpr fresh;
+    fresh.kind = SExpr::Kind::List;
+    fresh.items.push_back(atomNode(":predicates", define.pos));
+    define.items.push_back(std::move(fresh));
+    predicates = &define.items.back();
+  }
+  predicates->items.insert(predicates->items.end(), added.begin(), added.end());
+}
+
+GroundAtom resolveAtom(const SExpr& expr, const std::string& file, const Domain& domain,
+                       const Problem& problem) {
+  if (expr.kind != SExpr::Kind::List || expr.items.empty() || !expr.items[0].isAtom()) {
+    fail(file, expr, "expected an atom, e.g. (p a b)");
+  }
+  const std::string& head = expr.items[0].text;
+  const int predicate = domain.findPredicate(head);
+  if (predicate < 0) fail(file, expr.items[0], "undefined predicate '" + head + "'");
+  const std::size_t arity = domain.predicates[predicate].paramTypes.size();
+  if (expr.items.size() - 1 != arity) {
+    fail(file, expr,
+         "predicate '" + head + "' takes " + std::to_string(arity) + " argument(s), " +
+             std::to_string(expr.items.size() - 1) + " given");
+  }
+  GroundAtom out{predicate, {}};
+  for (std::size_t i = 1; i < expr.items.size(); ++i) {
+    const SExpr& arg = expr.items[i];
+    if (!arg.isAtom()) fail(file, arg, "expected an object name");
+    const ObjectId id = problem.findObject(arg.text);
+    if (id < 0) fail(file, arg, "undefined object '" + arg.text + "'");
+    out.args.push_back(id);
+  }
+  return out;
+}
+
+InitialLiteral resolveLiteral(const SExpr& expr, const std::string& file, const Domain& domain,
+                              const Problem& problem) {
+  if (expr.startsWith("not")) {
+    if (expr.items.size() != 2) fail(file, expr, "'not' takes one atom");
+    return {resolveAtom(expr.items[1], file, domain, problem), false, expr.pos};
+  }
+  return {resolveAtom(expr, file, domain, problem), true, expr.pos};
+}
+
+// Moves the knowledge constraints of :init out of it, leaving the plain facts in place.
+std::vector<SExpr> extractConstraints(SExpr& init) {
+  std::vector<SExpr> facts;
+  std::vector<SExpr> constraints;
+  const std::function<void(SExpr&)> visit = [&](SExpr& item) {
+    if (item.startsWith("and")) {
+      for (std::size_t i = 1; i < item.items.size(); ++i) visit(item.items[i]);
+    } else if (item.startsWith("unknown") || item.startsWith("oneof") || item.startsWith("or") ||
+               item.startsWith("not")) {
+      constraints.push_back(std::move(item));
+    } else {
+      facts.push_back(std::move(item));
+    }
+  };
+  for (std::size_t i = 1; i < init.items.size(); ++i) visit(init.items[i]);
+  init.items.resize(1);
+  init.items.insert(init.items.end(), facts.begin(), facts.end());
+  return constraints;
+}
+
+}  // namespace
+
+ContingentProblem parseContingent(std::string_view domainText, const std::string& domainFile,
+                                  std::string_view problemText, const std::string& problemFile) {
+  ContingentProblem out;
+  std::vector<SExpr> domainTop = readSExprs(domainText, domainFile);
+  Rewriter rewriter(domainFile);
+  if (domainTop.size() == 1 && domainTop[0].startsWith("define")) {
+    SExpr& define = domainTop[0];
+    for (std::size_t i = 2; i < define.items.size(); ++i) {
+      SExpr& part = define.items[i];
+      if (part.startsWith(":action")) rewriteAction(part, rewriter, domainFile);
+      if (part.startsWith(":requirements")) {
+        std::erase_if(part.items, [](const SExpr& r) { return r.isAtom(":contingent"); });
+      }
+    }
+    declareKnowledgePredicates(define, rewriter, domainFile);
+  }
+  out.domain = parseDomain(domainTop, domainFile);
+
+  std::vector<SExpr> problemTop = readSExprs(problemText, problemFile);
+  std::vector<SExpr> constraintExprs;
+  Rewriter goalRewriter(problemFile);
+  if (problemTop.size() == 1 && problemTop[0].startsWith("define")) {
+    SExpr& define = problemTop[0];
+    std::erase_if(define.items, [](const SExpr& s) { return s.startsWith(":hidden"); });
+    for (std::size_t i = 2; i < define.items.size(); ++i) {
+      SExpr& part = define.items[i];
+      if (part.startsWith(":init")) {
+        out.initPos = part.pos;
+        constraintExprs = extractConstraints(part);
+      }
+      if (part.startsWith(":goal")) goalRewriter.queries(part, Rewriter::Context::Goal);
+    }
+  }
+  for (const auto& [name, pos] : goalRewriter.kwPredicates) {
+    if (out.domain.findPredicate("kw." + name) < 0) {
+      throw InputError(locate(problemFile,
+                              "goal queries Kw of '" + name + "', which no action observes",
+                              pos.line, pos.column));
+    }
+  }
+  for (const auto& [name, pos] : goalRewriter.kvFunctions) {
+    if (out.domain.findPredicate("kv." + name) < 0) {
+      throw InputError(locate(problemFile,
+                              "goal queries Kv of '" + name + "', which no action senses", pos.line,
+                              pos.column));
+    }
+  }
+  out.problem = parseProblem(problemTop, problemFile, out.domain);
+
+  std::set<int> varying;
+  for (const SExpr& expr : constraintExprs) {
+    KnowledgeConstraint constraint;
+    constraint.pos = expr.pos;
+    const std::string& head = expr.items[0].text;
+    if (head == "not") {
+      constraint.kind = KnowledgeConstraint::Kind::KnownFalse;
+      constraint.literals.push_back(resolveLiteral(expr, problemFile, out.domain, out.problem));
+    } else if (head == "unknown") {
+      if (expr.items.size() != 2) fail(problemFile, expr, "'unknown' takes one atom");
+      constraint.kind = KnowledgeConstraint::Kind::Unknown;
+      constraint.literals.push_back(
+          {resolveAtom(expr.items[1], problemFile, out.domain, out.problem), true, expr.pos});
+    } else {
+      constraint.kind =
+          head == "oneof" ? KnowledgeConstraint::Kind::OneOf : KnowledgeConstraint::Kind::Or;
+      if (expr.items.size() < 2) fail(problemFile, expr, "'" + head + "' needs at least one atom");
+      for (std::size_t i = 1; i < expr.items.size(); ++i) {
+        const SExpr& item = expr.items[i];
+        if (item.startsWith("and") || item.startsWith("oneof") || item.startsWith("or")) {
+          fail(problemFile, item,
+               "malformed '" + head + "': expected atoms or (not atom), found " + toString(item));
+        }
+        constraint.literals.push_back(resolveLiteral(item, problemFile, out.domain, out.problem));
+      }
+    }
+    for (const InitialLiteral& literal : constraint.literals) {
+      if (constraint.kind != KnowledgeConstraint::Kind::KnownFalse) {
+        varying.insert(literal.atom.predicate);
+        continue;
+      }
+      for (const GroundAtom& known : out.problem.init) {
+        if (known.predicate == literal.atom.predicate && known.args == literal.atom.args) {
+          throw InputError(
+              locate(problemFile,
+                     "contradictory initial knowledge: " +
+                         describeAtom(out.domain, out.problem, known.predicate, known.args) +
+                         " is both known true and known false",
+                     literal.pos.line, literal.pos.column));
+        }
+      }
+    }
+    out.constraints.push_back(std::move(constraint));
+  }
+  for (std::size_t p = 0; p < out.domain.predicates.size(); ++p) {
+    const std::string& name = out.domain.predicates[p].name;
+    if (name.starts_with("kw.")) varying.insert(out.domain.findPredicate(name.substr(3)));
+  }
+  out.varyingPredicates.assign(varying.begin(), varying.end());
+  return out;
+}
+
+ContingentProblem loadContingent(const std::string& domainPath, const std::string& problemPath) {
+  return parseContingent(readTextFile(domainPath), domainPath, readTextFile(problemPath),
+                         problemPath);
+}
+
+std::vector<HiddenState> parseHidden(std::string_view text, const std::string& file,
+                                     const ContingentProblem& contingent) {
+  std::vector<HiddenState> out;
+  const std::vector<SExpr> top = readSExprs(text, file);
+  const std::function<void(const SExpr&)> visit = [&](const SExpr& expr) {
+    if (!expr.isList()) return;
+    if (expr.startsWith(":hidden")) {
+      HiddenState state;
+      state.pos = expr.pos;
+      for (std::size_t i = 1; i < expr.items.size(); ++i) {
+        const SExpr& item = expr.items[i];
+        if (item.startsWith("and")) {
+          for (std::size_t k = 1; k < item.items.size(); ++k) {
+            state.atoms.push_back(
+                resolveAtom(item.items[k], file, contingent.domain, contingent.problem));
+          }
+        } else if (!item.startsWith("not")) {
+          state.atoms.push_back(resolveAtom(item, file, contingent.domain, contingent.problem));
+        }
+      }
+      out.push_back(std::move(state));
+      return;
+    }
+    for (const SExpr& item : expr.items) visit(item);
+  };
+  for (const SExpr& expr : top) visit(expr);
+  if (out.empty()) throw InputError(locate(file, "no '(:hidden …)' section"));
+  return out;
+}
+
+// --- KnowledgeTask -------------------------------------------------------------------------
+
+namespace {
+
+// Kv(f) holds initially for every function term :init gives a value.
+std::vector<GroundAtom> initialValueKnowledge(const ContingentProblem& contingent) {
+  std::vector<GroundAtom> out;
+  for (const InitialFluent& value : contingent.problem.initFluents) {
+    const int predicate =
+        contingent.domain.findPredicate("kv." + contingent.domain.functions[value.function].name);
+    if (predicate >= 0) out.push_back({predicate, value.args});
+  }
+  return out;
+}
+
+Problem groundingProblem(const ContingentProblem& contingent) {
+  Problem problem = contingent.problem;
+  for (const GroundAtom& atom : initialValueKnowledge(contingent)) problem.init.push_back(atom);
+  for (const KnowledgeConstraint& constraint : contingent.constraints) {
+    if (constraint.kind == KnowledgeConstraint::Kind::KnownFalse) continue;
+    // Negative literals too: an atom a constraint names may be true in some world.
+    for (const InitialLiteral& literal : constraint.literals) problem.init.push_back(literal.atom);
+  }
+  return problem;
+}
+
+void setBit(std::span<std::uint64_t> words, AtomId atom, bool value) {
+  const std::uint64_t mask = std::uint64_t{1} << (atom & 63);
+  if (value) {
+    words[atom >> 6] |= mask;
+  } else {
+    words[atom >> 6] &= ~mask;
+  }
+}
+
+}  // namespace
+
+KnowledgeTask::KnowledgeTask(const ContingentProblem& contingent,
+                             const ProcedureRegistry& procedures, std::size_t maxWorlds)
+    : contingent_(contingent),
+      attachments_(
+          std::make_unique<AttachmentRuntime>(contingent.domain, contingent.problem, procedures)),
+      task_(ground(contingent.domain, groundingProblem(contingent), 4096,
+                   contingent.varyingPredicates)),
+      evaluator_(task_, *attachments_),
+      worlds_(evaluator_.layout().words()) {
+  for (std::size_t a = 0; a < task_.atomNames.size(); ++a) {
+    atomIds_.emplace(task_.atomNames[a], static_cast<AtomId>(a));
+  }
+  for (std::size_t o = 0; o < task_.operators.size(); ++o) {
+    operatorIds_["(" + task_.operators[o].name + ")"].push_back(static_cast<int>(o));
+  }
+  std::unordered_map<std::string, FluentId> fluentIds;
+  for (std::size_t f = 0; f < task_.fluentNames.size(); ++f) {
+    fluentIds.emplace(task_.fluentNames[f], static_cast<FluentId>(f));
+  }
+  kwBase_.assign(task_.atomNames.size(), kNotKnowledge);
+  kvBase_.assign(task_.atomNames.size(), kNotKnowledge);
+  for (std::size_t a = 0; a < task_.atomNames.size(); ++a) {
+    const std::string& name = task_.atomNames[a];
+    const std::string base = "(" + name.substr(std::min<std::size_t>(4, name.size()));
+    if (name.starts_with("(kw.")) {
+      const auto it = atomIds_.find(base);
+      kwBase_[a] = it == atomIds_.end() ? kNoBase : it->second;
+      knowledgeAtoms_.push_back(static_cast<AtomId>(a));
+    } else if (name.starts_with("(kv.")) {
+      const auto it = fluentIds.find(base);
+      kvBase_[a] = it == fluentIds.end() ? kNoBase : it->second;
+      knowledgeAtoms_.push_back(static_cast<AtomId>(a));
+    }
+  }
+  const auto testsOnly = [](const Condition& c) {
+    Condition out;
+    out.fluentTests = c.fluentTests;
+    out.numericTests = c.numericTests;
+    out.moduleChecks = c.moduleChecks;
+    return out;
+  };
+  for (const Operator& op : task_.operators) {
+    preconditionTests_.push_back(testsOnly(op.precondition));
+  }
+  if (task_.goal.size() == 1) goalTests_ = testsOnly(task_.goal[0]);
+  scratch_.resize(evaluator_.layout().words());
+  enumerateWorlds(maxWorlds);
+  checkGoalKnowable();
+}
+
+std::uint32_t KnowledgeTask::store(std::span<const std::uint64_t> words) {
+  return worlds_.insert(words).first;
+}
+
+// Possible initial worlds: every assignment to the atoms named by constraints that satisfies them,
+// found by backtracking with early pruning of violated `oneof`/`or` constraints.
+void KnowledgeTask::enumerateWorlds(std::size_t maxWorlds) {
+  const std::string& file = contingent_.problem.file;
+  std::vector<std::uint64_t> base(evaluator_.layout().words(), 0);
+  evaluator_.initialState(base);
+  // initialState set the union of possibly-true atoms; rebuild from the known ones.
+  std::fill(base.begin(), base.begin() + static_cast<long>(evaluator_.layout().atomBitset(1)), 0);
+  std::vector<std::int8_t> fixed(task_.atomNames.size(), -1);
+  const auto atomOf = [&](const InitialLiteral& literal) {
+    return findAtom(describeAtom(contingent_.domain, contingent_.problem, literal.atom.predicate,
+                                 literal.atom.args));
+  };
+  std::vector<GroundAtom> knownAtoms = contingent_.problem.init;
+  for (const GroundAtom& atom : initialValueKnowledge(contingent_)) knownAtoms.push_back(atom);
+  for (const GroundAtom& atom : knownAtoms) {
+    const AtomId id =
+        findAtom(describeAtom(contingent_.domain, contingent_.problem, atom.predicate, atom.args));
+    if (id >= 0) fixed[id] = 1;
+  }
+  struct Clause {
+    bool exactlyOne = false;
+    std::vector<std::pair<AtomId, bool>> literals;
+  };
+  std::vector<Clause> clauses;
+  std::vector<AtomId> variables;
+  std::vector<char> isVariable(task_.atomNames.size(), 0);
+  for (const KnowledgeConstraint& constraint : contingent_.constraints) {
+    if (constraint.kind == KnowledgeConstraint::Kind::KnownFalse) {
+      const InitialLiteral& literal = constraint.literals[0];
+      const AtomId id = atomOf(literal);
+      if (id < 0) continue;
+      if (fixed[id] == 1) {
+        throw InputError(locate(file,
+                                "contradictory initial knowledge: " + task_.atomNames[id] +
+                                    " is both known true and known false",
+                                literal.pos.line, literal.pos.column));
+      }
+      fixed[id] = 0;
+      continue;
+    }
+    Clause clause;
+    clause.exactlyOne = constraint.kind == KnowledgeConstraint::Kind::OneOf;
+    for (const InitialLiteral& literal : constraint.literals) {
+      const AtomId id = atomOf(literal);
+      if (id < 0) continue;
+      clause.literals.push_back({id, literal.positive});
+      if (!isVariable[id]) {
+        isVariable[id] = 1;
+        variables.push_back(id);
+      }
+    }
+    if (constraint.kind != KnowledgeConstraint::Kind::Unknown) clauses.push_back(clause);
+  }
+  std::vector<std::vector<int>> clausesOf(task_.atomNames.size());
+  for (std::size_t c = 0; c < clauses.size(); ++c) {
+    for (const auto& [atom, positive] : clauses[c].literals) {
+      clausesOf[atom].push_back(static_cast<int>(c));
+    }
+  }
+  std::vector<std::int8_t> value(task_.atomNames.size(), -1);
+  const auto violated = [&](const Clause& clause) {
+    int trueCount = 0;
+    int open = 0;
+    for (const auto& [atom, positive] : clause.literals) {
+      if (value[atom] < 0) {
+        ++open;
+      } else if ((value[atom] == 1) == positive) {
+        ++trueCount;
+      }
+    }
+    return (clause.exactlyOne && trueCount > 1) || (trueCount == 0 && open == 0);
+  };
+  std::vector<std::uint64_t> world(base.size());
+  const std::function<void(std::size_t)> assign = [&](std::size_t index) {
+    if (index == variables.size()) {
+      std::copy(base.begin(), base.end(), world.begin());
+      for (std::size_t a = 0; a < fixed.size(); ++a) {
+        if (fixed[a] == 1) setBit(world, static_cast<AtomId>(a), true);
+      }
+      for (const AtomId atom : variables) setBit(world, atom, value[atom] == 1);
+      initial_.push_back(store(world));
+      if (initial_.size() > maxWorlds) {
+        throw InputError(locate(file,
+                                "the initial knowledge admits more than " +
+                                    std::to_string(maxWorlds) + " possible worlds",
+                                contingent_.initPos.line, contingent_.initPos.column));
+      }
+      return;
+    }
+    const AtomId atom = variables[index];
+    for (const std::int8_t candidate : {std::int8_t{0}, std::int8_t{1}}) {
+      if (fixed[atom] >= 0 && fixed[atom] != candidate) continue;
+      value[atom] = candidate;
+      bool ok = true;
+      for (const int c : clausesOf[atom]) ok = ok && !violated(clauses[c]);
+      if (ok) assign(index + 1);
+    }
+    value[atom] = -1;
+  };
+  assign(0);
+  if (initial_.empty()) {
+    throw InputError(locate(file,
+                            "contradictory initial knowledge: no world satisfies the 'oneof', "
+                            "'or' and known atoms of :init",
+                            contingent_.initPos.line, contingent_.initPos.column));
+  }
+  std::sort(initial_.begin(), initial_.end());
+  initial_.erase(std::unique(initial_.begin(), initial_.end()), initial_.end());
+  canonicalize(initial_);
+}
+
+// A goal atom that is unknown initially, that no operator changes and that no operator observes
+// can never become known: reject the problem instead of searching forever.
+void KnowledgeTask::checkGoalKnowable() const {
+  if (task_.goal.size() != 1) return;
+  std::vector<char> touched(task_.atomNames.size(), 0);
+  const auto mark = [&](const EffectList& effect) {
+    for (const AtomId a : effect.adds) {
+      touched[a] = 1;
+      if (kwBase_[a] >= 0) touched[kwBase_[a]] = 1;
+    }
+    for (const AtomId a : effect.deletes) touched[a] = 1;
+  };
+  for (const Operator& op : task_.operators) {
+    mark(op.effect);
+    for (const ConditionalEffect& c : op.conditional) mark(c.effect);
+  }
+  const Condition& goal = task_.goal[0];
+  for (const std::vector<AtomId>* atoms : {&goal.positive, &goal.negative}) {
+    for (const AtomId atom : *atoms) {
+      bool value = false;
+      if (touched[atom] || kwBase_[atom] != kNotKnowledge || kvBase_[atom] != kNotKnowledge ||
+          known(atom, initial_, value)) {
+        continue;
+      }
+      const SourcePos pos = contingent_.problem.goal.pos;
+      throw InputError(locate(contingent_.problem.file,
+                              "goal atom " + task_.atomNames[atom] +
+                                  " is unknown initially and no action changes or observes "
+                                  "it: it can never become known",
+                              pos.line, pos.column));
+    }
+  }
+}
+
+AtomId KnowledgeTask::findAtom(const std::string& name) const {
+  const auto it = atomIds_.find(name);
+  return it == atomIds_.end() ? -1 : it->second;
+}
+
+int KnowledgeTask::findOperator(const std::string& name) const {
+  const auto it = operatorIds_.find(name);
+  return it == operatorIds_.end() ? -1 : it->second.front();
+}
+
+const std::vector<int>& KnowledgeTask::variants(int op) const {
+  return operatorIds_.at("(" + task_.operators[op].name + ")");
+}
+
+bool KnowledgeTask::known(AtomId atom, const Belief& belief, bool& value) const {
+  value = world(belief.front()).atom(atom);
+  for (const std::uint32_t w : belief) {
+    if (world(w).atom(atom) != value) return false;
+  }
+  return true;
+}
+
+bool KnowledgeTask::kwHolds(AtomId atom, const Belief& belief) const {
+  bool value = false;
+  if (known(atom, belief, value) && value) return true;
+  const AtomId base = kwBase_[atom];
+  return base == kNoBase || known(base, belief, value);
+}
+
+bool KnowledgeTask::kvHolds(AtomId atom, const Belief& belief) const {
+  bool value = false;
+  if (known(atom, belief, value) && value) return true;
+  return kvBase_[atom] != kNoBase && fluentKnown(kvBase_[atom], belief);
+}
+
+bool KnowledgeTask::fluentKnown(FluentId fluent, const Belief& belief) const {
+  const double first = world(belief.front()).fluent(fluent);
+  if (std::isnan(first)) return false;
+  return std::all_of(belief.begin(), belief.end(),
+                     [&](std::uint32_t w) { return world(w).fluent(fluent) == first; });
+}
+
+bool KnowledgeTask::knowsWhether(AtomId atom, const Belief& belief) const {
+  bool value = false;
+  if (known(atom, belief, value)) return true;
+  for (const AtomId k : knowledgeAtoms_) {
+    if (kwBase_[k] == atom) return known(k, belief, value) && value;
+  }
+  return false;
+}
+
+bool KnowledgeTask::allWorlds(const Condition& tests, const Belief& belief) {
+  if (tests.fluentTests.empty() && tests.numericTests.empty() && tests.moduleChecks.empty()) {
+    return true;
+  }
+  return std::all_of(belief.begin(), belief.end(),
+                     [&](std::uint32_t w) { return evaluator_.holds(tests, world(w)); });
+}
+
+bool KnowledgeTask::holds(const Condition& condition, const Belief& belief) {
+  return holdsAtoms(condition, belief) &&
+         std::all_of(belief.begin(), belief.end(),
+                     [&](std::uint32_t w) { return evaluator_.holds(condition, world(w)); });
+}
+
+bool KnowledgeTask::applicable(int op, const Belief& belief) {
+  return holdsAtoms(task_.operators[op].precondition, belief) &&
+         allWorlds(preconditionTests_[op], belief);
+}
+
+bool KnowledgeTask::holdsAtoms(const Condition& condition, const Belief& belief) const {
+  bool value = false;
+  for (const AtomId atom : condition.positive) {
+    if (kwBase_[atom] != kNotKnowledge) {
+      if (!kwHolds(atom, belief)) return false;
+    } else if (kvBase_[atom] != kNotKnowledge) {
+      if (!kvHolds(atom, belief)) return false;
+    } else if (!known(atom, belief, value) || !value) {
+      return false;
+    }
+  }
+  for (const AtomId atom : condition.negative) {
+    if (kwBase_[atom] != kNotKnowledge) {
+      if (kwHolds(atom, belief)) return false;
+    } else if (kvBase_[atom] != kNotKnowledge) {
+      if (kvHolds(atom, belief)) return false;
+    } else if (!known(atom, belief, value) || value) {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool KnowledgeTask::isGoal(const Belief& belief) {
+  if (task_.goal.empty()) return false;
+  if (task_.goal.size() == 1) {
+    return holdsAtoms(task_.goal[0], belief) && allWorlds(goalTests_, belief);
+  }
+  // A disjunctive goal must hold in every world, not necessarily by the same disjunct.
+  return std::all_of(belief.begin(), belief.end(),
+                     [&](std::uint32_t w) { return evaluator_.isGoal(world(w)); });
+}
+
+bool KnowledgeTask::apply(int op, const Belief& belief, Belief& out) {
+  out.clear();
+  for (const std::uint32_t w : belief) {
+    if (!evaluator_.apply(task_.operators[op], world(w), scratch_)) return false;
+    out.push_back(store(scratch_));
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  canonicalize(out);
+  return true;
+}
+
+// Drops Kw/Kv atoms whose subject is known anyway, so equal knowledge has one representation.
+void KnowledgeTask::canonicalize(Belief& belief) {
+  bool changed = false;
+  for (const AtomId k : knowledgeAtoms_) {
+    bool present = false;
+    for (const std::uint32_t w : belief) present = present || world(w).atom(k);
+    if (!present) continue;
+    bool value = false;
+    const bool subjectKnown = kwBase_[k] != kNotKnowledge
+                                  ? kwBase_[k] == kNoBase || known(kwBase_[k], belief, value)
+                                  : kvBase_[k] != kNoBase && fluentKnown(kvBase_[k], belief);
+    if (!subjectKnown) continue;
+    for (std::uint32_t& w : belief) {
+      const StateView view = world(w);
+      if (!view.atom(k)) continue;
+      std::copy_n(view.words(), scratch_.size(), scratch_.begin());
+      setBit(scratch_, k, false);
+      w = store(scratch_);
+    }
+    changed = true;
+  }
+  if (changed) {
+    std::sort(belief.begin(), belief.end());
+    belief.erase(std::unique(belief.begin(), belief.end()), belief.end());
+  }
+}
+
+AtomId KnowledgeTask::pendingObservation(const Belief& belief) const {
+  bool value = false;
+  for (const AtomId k : knowledgeAtoms_) {
+    if (kwBase_[k] < 0) continue;
+    if (known(k, belief, value) && value && !known(kwBase_[k], belief, value)) return kwBase_[k];
+  }
+  return -1;
+}
+
+void KnowledgeTask::split(AtomId atom, const Belief& belief, Belief& onTrue, Belief& onFalse) {
+  onTrue.clear();
+  onFalse.clear();
+  for (const std::uint32_t w : belief) (world(w).atom(atom) ? onTrue : onFalse).push_back(w);
+  if (!onTrue.empty()) canonicalize(onTrue);
+  if (!onFalse.empty()) canonicalize(onFalse);
+}
+
+std::uint32_t KnowledgeTask::hiddenWorld(const HiddenState& hidden, const std::string& file) {
+  std::fill(scratch_.begin(), scratch_.end(), 0);
+  std::copy_n(world(initial_.front()).words(), scratch_.size(), scratch_.begin());
+  // Atoms that differ between initial worlds are the uncertain ones: start them all false.
+  for (std::size_t a = 0; a < task_.atomNames.size(); ++a) {
+    bool value = false;
+    if (!known(static_cast<AtomId>(a), initial_, value)) {
+      setBit(scratch_, static_cast<AtomId>(a), false);
+    }
+  }
+  for (const GroundAtom& atom : hidden.atoms) {
+    const AtomId id =
+        findAtom(describeAtom(contingent_.domain, contingent_.problem, atom.predicate, atom.args));
+    if (id < 0) {
+      throw InputError(locate(
+          file,
+          "hidden state is not one of the initial worlds the knowledge admits: " +
+              describeAtom(contingent_.domain, contingent_.problem, atom.predicate, atom.args) +
+              " can never be true",
+          hidden.pos.line, hidden.pos.column));
+    }
+    setBit(scratch_, id, true);
+  }
+  const std::uint32_t id = worlds_.find(scratch_);
+  if (id == PackedSet::kMissing || !std::binary_search(initial_.begin(), initial_.end(), id)) {
+    throw InputError(locate(file,
+                            "hidden state is not one of the initial worlds the knowledge admits",
+                            hidden.pos.line, hidden.pos.column));
+  }
+  return id;
+}
+
+bool KnowledgeTask::holdsIn(const Condition& condition, std::uint32_t w) {
+  return evaluator_.holds(condition, world(w));
+}
+
+bool KnowledgeTask::isGoalIn(std::uint32_t w) {
+  return evaluator_.isGoal(world(w));
+}
+
+std::uint32_t KnowledgeTask::applyIn(int op, std::uint32_t w) {
+  if (!evaluator_.apply(task_.operators[op], world(w), scratch_)) return PackedSet::kMissing;
+  return store(scratch_);
+}
+
+}  // namespace kaboum::symbolic

@@ -1,0 +1,143 @@
+// Knowledge-level planning tasks (thesis §3.3.1, PKS databases Kf/Kw/Kv and primitive queries;
+// seed 003 §III-A). The contingent PDDL dialect (`unknown`, `oneof`, `or` in :init, `:observe`) and
+// explicit PKS operators (`(kw φ)`, `(kv f)`, `(k φ)`) are rewritten onto the core parser and
+// grounder; a knowledge state is the set of worlds consistent with what the agent knows.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "kaboum/symbolic/attachments.hpp"
+#include "kaboum/symbolic/packed_set.hpp"
+#include "kaboum/symbolic/state.hpp"
+#include "kaboum/symbolic/task.hpp"
+
+namespace kaboum::symbolic {
+
+// A literal of the initial knowledge, with where it was written.
+struct InitialLiteral {
+  GroundAtom atom;
+  bool positive = true;
+  SourcePos pos;
+};
+
+// One statement of :init beyond plain known atoms: `(unknown p)`, `(oneof l…)` (exactly one holds),
+// `(or l…)` (at least one holds) or `(not p)` (p known false).
+struct KnowledgeConstraint {
+  enum class Kind { Unknown, OneOf, Or, KnownFalse };
+  Kind kind = Kind::Unknown;
+  std::vector<InitialLiteral> literals;
+  SourcePos pos;
+};
+
+// A parsed contingent problem. `problem.init` holds the atoms known true; every atom not known true
+// and not named by a constraint is known false (the benchmarks' convention; PKS's open world is
+// written with `unknown`).
+struct ContingentProblem {
+  Domain domain;
+  Problem problem;
+  std::vector<KnowledgeConstraint> constraints;
+  std::vector<int> varyingPredicates;  // unknown initially or observed: never folded as static
+  SourcePos initPos;
+};
+
+// Parses the contingent dialect (also plain PDDL: the closed-world special case). Throws InputError
+// "file:line:col: ..." for malformed `oneof`/`or`/`unknown`/`kw`/`kv`, sensing actions that also
+// change the atom they observe, and everything the core parser rejects.
+ContingentProblem parseContingent(std::string_view domainText, const std::string& domainFile,
+                                  std::string_view problemText, const std::string& problemFile);
+ContingentProblem loadContingent(const std::string& domainPath, const std::string& problemPath);
+
+// True initial states of a `hidden.pddl` file: one list of atoms (true besides the known ones) per
+// `(:hidden …)` section; a problem file's own :hidden sections work the same way.
+struct HiddenState {
+  std::vector<GroundAtom> atoms;
+  SourcePos pos;
+};
+std::vector<HiddenState> parseHidden(std::string_view text, const std::string& file,
+                                     const ContingentProblem& contingent);
+
+// Sorted ids of the worlds a knowledge state admits.
+using Belief = std::vector<std::uint32_t>;
+
+// Ground knowledge-level task: worlds are packed classical states registered once; a knowledge
+// state (belief) is a sorted list of world ids. Kf(p) holds if p is true in every world, Kf(¬p) if
+// false in every world; Kw(p) if the auxiliary atom `(kw.p …)` (added by sensing) is true in every
+// world or p is known; Kv(f) likewise with `(kv.f …)` or a value common to every world.
+class KnowledgeTask {
+ public:
+  // Throws InputError when the initial knowledge is contradictory (no world) or admits more than
+  // `maxWorlds` worlds, and when a goal atom can never become known.
+  KnowledgeTask(const ContingentProblem& contingent, const ProcedureRegistry& procedures,
+                std::size_t maxWorlds = std::size_t{1} << 18);
+
+  const GroundTask& task() const { return task_; }
+  const ContingentProblem& contingent() const { return contingent_; }
+  const Belief& initialBelief() const { return initial_; }
+  std::size_t worldCount() const { return worlds_.size(); }
+  StateView world(std::uint32_t id) const { return evaluator_.view(worlds_.get(id)); }
+  AttachmentRuntime& attachments() { return *attachments_; }
+
+  // Primitive queries over a conjunction: atoms as K/Kw/Kv literals, numeric and attachment tests
+  // in every world.
+  bool holds(const Condition& condition, const Belief& belief);
+  bool applicable(int op, const Belief& belief);
+  bool isGoal(const Belief& belief);
+  // Applies operator `op` in every world; false if an attachment reports it infeasible somewhere.
+  bool apply(int op, const Belief& belief, Belief& out);
+
+  // An atom the agent will know at run time but does not know now (Kw(p), neither K(p) nor K(¬p)):
+  // the planner branches on it. -1 if none.
+  AtomId pendingObservation(const Belief& belief) const;
+  // Whether `atom` may be branched on: Kw(atom) holds.
+  bool knowsWhether(AtomId atom, const Belief& belief) const;
+  // Splits `belief` on `atom` (branch(φ), Figure 3.2); either side may be empty.
+  void split(AtomId atom, const Belief& belief, Belief& onTrue, Belief& onFalse);
+
+  // The world of a hidden initial state; throws InputError if it is not one the knowledge admits.
+  std::uint32_t hiddenWorld(const HiddenState& hidden, const std::string& file);
+  // World-level evaluation for simulated execution.
+  bool holdsIn(const Condition& condition, std::uint32_t world);
+  bool isGoalIn(std::uint32_t world);
+  std::uint32_t applyIn(int op, std::uint32_t world);  // PackedSet::kMissing if infeasible
+
+  AtomId findAtom(const std::string& name) const;   // "(p a b)"; -1 if unknown
+  int findOperator(const std::string& name) const;  // "(a x y)"; -1 if unknown
+  // Operators sharing `op`'s name (a disjunctive precondition is split into one per disjunct).
+  const std::vector<int>& variants(int op) const;
+
+ private:
+  bool known(AtomId atom, const Belief& belief, bool& value) const;
+  bool kwHolds(AtomId atom, const Belief& belief) const;
+  bool kvHolds(AtomId atom, const Belief& belief) const;
+  bool fluentKnown(FluentId fluent, const Belief& belief) const;
+  bool holdsAtoms(const Condition& condition, const Belief& belief) const;
+  bool allWorlds(const Condition& tests, const Belief& belief);
+  void canonicalize(Belief& belief);
+  std::uint32_t store(std::span<const std::uint64_t> words);
+  void enumerateWorlds(std::size_t maxWorlds);
+  void checkGoalKnowable() const;
+
+  const ContingentProblem& contingent_;
+  std::unique_ptr<AttachmentRuntime> attachments_;
+  GroundTask task_;
+  StateEvaluator evaluator_;
+  PackedSet worlds_;
+  Belief initial_;
+  std::vector<Condition> preconditionTests_;  // numeric, fluent and attachment tests only
+  Condition goalTests_;
+  std::unordered_map<std::string, AtomId> atomIds_;
+  std::unordered_map<std::string, std::vector<int>> operatorIds_;
+  static constexpr AtomId kNotKnowledge = -1;
+  static constexpr AtomId kNoBase = -2;  // Kw/Kv of something unreachable: always known
+  std::vector<AtomId> kwBase_;           // per atom: base atom of a (kw.p …) atom
+  std::vector<FluentId> kvBase_;         // per atom: fluent of a (kv.f …) atom
+  std::vector<AtomId> knowledgeAtoms_;   // all (kw.…) and (kv.…) atoms
+  std::vector<std::uint64_t> scratch_;
+};
+
+}  // namespace kaboum::symbolic

@@ -1,0 +1,436 @@
+// Knowledge-level contingent planning: PKS queries over knowledge states, the contingent dialect,
+// AND–OR search with branched plans, their validator and execution against hidden states.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "kaboum/core/error.hpp"
+#include "kaboum/symbolic/contingent.hpp"
+#include "kaboum/symbolic/force_sensing.hpp"
+#include "kaboum/symbolic/toy_geometry.hpp"
+#include "symbolic_test_support.hpp"
+
+namespace kaboum::symbolic {
+namespace {
+
+using testing::pddlPath;
+
+std::string contingentPath(const std::string& relative) {
+  return pddlPath("contingent/" + relative);
+}
+
+ContingentProblem parseTexts(const std::string& domain, const std::string& problem) {
+  return parseContingent(domain, "d.pddl", problem, "p.pddl");
+}
+
+std::string errorOf(const std::string& domain, const std::string& problem) {
+  try {
+    const ContingentProblem contingent = parseTexts(domain, problem);
+    KnowledgeTask task(contingent, ProcedureRegistry{});
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Solves, validates every branch of the printed tree and returns the result.
+ContingentResult solveAndValidate(KnowledgeTask& task, const ContingentOptions& options = {}) {
+  ContingentResult result = solveContingent(task, options);
+  if (result.status == SearchStatus::Solved) {
+    const std::string text = formatPlanTree(task, result.plan);
+    const PlanTree parsed = parsePlanTree(text, "plan", task);
+    const TreeValidation validation = validatePlanTree(task, parsed, "plan");
+    EXPECT_TRUE(validation.valid) << validation.message << "\n" << text;
+    const TreeMetrics original = measure(result.plan);
+    EXPECT_EQ(validation.metrics.actions, original.actions);
+    EXPECT_EQ(validation.metrics.leaves, original.leaves);
+  }
+  return result;
+}
+
+// --- knowledge states and primitive queries -------------------------------------------------
+
+const std::string kSwitchDomain = R"((define (domain lamp)
+  (:predicates (on) (seen) (done) (broken))
+  (:action look :precondition (not (kw (on))) :effect (and (seen) (kw (on))))
+  (:action fix :precondition (and (kw (on)) (not (on))) :effect (on))
+  (:action finish :precondition (on) :effect (done))))";
+
+TEST(Knowledge, UnknownAtomsAreNeitherKnownTrueNorFalse) {
+  const ContingentProblem contingent =
+      parseTexts(kSwitchDomain,
+                 "(define (problem p) (:domain lamp) (:init (unknown (on))) "
+                 "(:goal (done)))");
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  ASSERT_EQ(task.initialBelief().size(), 2u);
+  const int look = task.findOperator("(look)");
+  const int fix = task.findOperator("(fix)");
+  const int finish = task.findOperator("(finish)");
+  ASSERT_GE(look, 0);
+  ASSERT_GE(fix, 0);
+  ASSERT_GE(finish, 0);
+  EXPECT_TRUE(task.applicable(look, task.initialBelief()));  // ¬Kw(on)
+  EXPECT_FALSE(task.applicable(fix, task.initialBelief()));  // neither Kw(on) nor K(¬on)
+  EXPECT_FALSE(task.applicable(finish, task.initialBelief()));
+  Belief sensed;
+  ASSERT_TRUE(task.apply(look, task.initialBelief(), sensed));
+  const AtomId on = task.findAtom("(on)");
+  EXPECT_EQ(task.pendingObservation(sensed), on);
+  EXPECT_TRUE(task.knowsWhether(on, sensed));
+  EXPECT_FALSE(task.applicable(look, sensed));  // Kw(on) now holds
+  Belief onTrue;
+  Belief onFalse;
+  task.split(on, sensed, onTrue, onFalse);
+  ASSERT_EQ(onTrue.size(), 1u);
+  ASSERT_EQ(onFalse.size(), 1u);
+  EXPECT_TRUE(task.applicable(finish, onTrue));
+  EXPECT_FALSE(task.applicable(fix, onTrue));
+  EXPECT_TRUE(task.applicable(fix, onFalse));
+  EXPECT_FALSE(task.applicable(look, onFalse));  // known now: Kw holds without the Kw atom
+  EXPECT_EQ(task.pendingObservation(onTrue), -1);
+}
+
+TEST(Knowledge, ClassicalProblemIsTheClosedWorldSpecialCase) {
+  const ContingentProblem contingent =
+      loadContingent(pddlPath("blocks/domain.pddl"), pddlPath("blocks/probBLOCKS-4-0.pddl"));
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  EXPECT_EQ(task.initialBelief().size(), 1u);
+  const ContingentResult result = solveAndValidate(task);
+  ASSERT_EQ(result.status, SearchStatus::Solved);
+  const TreeMetrics metrics = measure(result.plan);
+  EXPECT_EQ(metrics.leaves, 1.0);
+  EXPECT_EQ(metrics.branches, 0.0);
+  EXPECT_GE(metrics.actions, 6.0);
+}
+
+TEST(Knowledge, OneOfAndOrConstrainTheInitialWorlds) {
+  const std::string domain = R"((define (domain d) (:predicates (a) (b) (c) (g))
+    (:action s :observe (a)) (:action t :observe (b)) (:action go :precondition (c) :effect (g))))";
+  const auto worlds = [&](const std::string& init) {
+    const ContingentProblem contingent =
+        parseTexts(domain, "(define (problem p) (:domain d) (:init " + init + ") (:goal (g)))");
+    return KnowledgeTask(contingent, ProcedureRegistry{}).initialBelief().size();
+  };
+  EXPECT_EQ(worlds("(c)"), 1u);
+  EXPECT_EQ(worlds("(unknown (a)) (unknown (b))"), 4u);
+  EXPECT_EQ(worlds("(oneof (a) (b))"), 2u);
+  EXPECT_EQ(worlds("(oneof (a) (b) (c))"), 3u);
+  EXPECT_EQ(worlds("(or (a) (b))"), 3u);
+  EXPECT_EQ(worlds("(or (not (a)) (b)) (unknown (a))"), 3u);
+  EXPECT_EQ(worlds("(a) (oneof (a) (b))"), 1u);  // a known true forces b false
+  EXPECT_EQ(worlds("(and (unknown (a)) (oneof (b) (c)))"), 4u);
+}
+
+TEST(Knowledge, KvQueriesOnFunctionValues) {
+  const std::string domain = R"((define (domain w) (:types o)
+    (:predicates (held ?x - o) (done ?x - o))
+    (:functions (weight ?x - o))
+    (:action weigh :parameters (?x - o) :precondition (held ?x) :effect (kv (weight ?x)))
+    (:action log :parameters (?x - o) :precondition (kv (weight ?x)) :effect (done ?x))))";
+  const ContingentProblem contingent =
+      parseTexts(domain,
+                 "(define (problem p) (:domain w) (:objects a b - o) "
+                 "(:init (held a) (= (weight b) 3)) (:goal (and (done a) (done b))))");
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  const int logA = task.findOperator("(log a)");
+  const int logB = task.findOperator("(log b)");
+  ASSERT_GE(logA, 0);
+  ASSERT_GE(logB, 0);
+  EXPECT_FALSE(task.applicable(logA, task.initialBelief()));  // weight of a unknown
+  EXPECT_TRUE(task.applicable(logB, task.initialBelief()));   // weight of b is known (3)
+  const ContingentResult result = solveAndValidate(task);
+  ASSERT_EQ(result.status, SearchStatus::Solved);
+  const std::string text = formatPlanTree(task, result.plan);
+  EXPECT_LT(text.find("(weigh a)"), text.find("(log a)")) << text;
+}
+
+// --- Force Sensing (thesis Table 3.1, Figure 3.2) --------------------------------------------
+
+TEST(ForceSensing, TwoContainersGiveTheBranchedPlanOfFigure32) {
+  const ContingentProblem contingent =
+      parseContingent(forceSensingDomain(), "fs-domain", forceSensingProblem(2), "fs-2");
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  EXPECT_EQ(task.initialBelief().size(), 4u);
+  const ContingentResult result = solveAndValidate(task);
+  ASSERT_EQ(result.status, SearchStatus::Solved);
+  const TreeMetrics metrics = measure(result.plan);
+  EXPECT_EQ(metrics.leaves, 4.0);  // one leaf per spillable/empty combination
+  EXPECT_EQ(metrics.branches, 3.0);
+  EXPECT_EQ(metrics.depth, 8u);  // grasp, sense, transfer, ungrasp per container
+  const std::string text = formatPlanTree(task, result.plan);
+  // Every path grasps, weighs, then branches on isSpillable before transferring.
+  const auto grasp = text.find("(grasp o");
+  const auto sense = text.find("(senseweight o");
+  const auto branch = text.find("(branch (isspillable o");
+  ASSERT_NE(grasp, std::string::npos) << text;
+  EXPECT_LT(grasp, sense);
+  EXPECT_LT(sense, branch);
+  EXPECT_NE(text.find("(transferupright o"), std::string::npos);
+  EXPECT_NE(text.find("(transferfast o"), std::string::npos);
+}
+
+TEST(ForceSensing, ExecutionFollowsTheSensedBranch) {
+  const ContingentProblem contingent =
+      parseContingent(forceSensingDomain(), "fs-domain", forceSensingProblem(2), "fs-2");
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  const ContingentResult result = solveContingent(task, {});
+  ASSERT_EQ(result.status, SearchStatus::Solved);
+  // Figure 3.2: o1 is spillable, o2 is empty.
+  const auto hidden =
+      parseHidden("(define (problem h) (:hidden (isspillable o1)))", "hidden", contingent);
+  const Execution run = executePlanTree(task, result.plan, task.hiddenWorld(hidden[0], "hidden"));
+  EXPECT_TRUE(run.reachedGoal) << run.message;
+  const auto has = [&](const std::string& step) {
+    return std::find(run.steps.begin(), run.steps.end(), step) != run.steps.end();
+  };
+  EXPECT_TRUE(has("(transferupright o1)"));
+  EXPECT_TRUE(has("(transferfast o2)"));
+  EXPECT_FALSE(has("(transferfast o1)"));
+  EXPECT_TRUE(has("branch (isspillable o1) -> true"));
+  EXPECT_TRUE(has("branch (isspillable o2) -> false"));
+}
+
+TEST(ForceSensing, ScalesToTenContainers) {
+  const ContingentProblem contingent =
+      parseContingent(forceSensingDomain(), "fs-domain", forceSensingProblem(10), "fs-10");
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  const ContingentResult result = solveContingent(task, {});
+  ASSERT_EQ(result.status, SearchStatus::Solved);
+  const TreeMetrics metrics = measure(result.plan);
+  EXPECT_EQ(metrics.leaves, 1024.0);
+  EXPECT_EQ(metrics.depth, 40u);
+  EXPECT_TRUE(validatePlanTree(task, result.plan, "plan").valid);
+}
+
+// --- Bartender (Table 6.1) and Bimanual Assembly (Tables 6.5/6.6) with toy geometry ---------
+
+TEST(Scenarios, BartenderBranchesOnEveryBottleAndHandsOverThroughTheSharedArea) {
+  const ContingentProblem contingent =
+      loadContingent(contingentPath("scenarios/bartender-domain.pddl"),
+                     contingentPath("scenarios/bartender-4.pddl"));
+  KnowledgeTask task(contingent, toyGeometryProcedures());
+  EXPECT_EQ(task.initialBelief().size(), 16u);
+  const ContingentResult result = solveAndValidate(task);
+  ASSERT_EQ(result.status, SearchStatus::Solved);
+  EXPECT_EQ(measure(result.plan).leaves, 16.0);
+  // Figure 6.2: o1 and o2 are empty. robot1 cannot reach the dishwasher, so it puts o1 down in
+  // the shared area where robot2 picks it up; full bottles o3 and o4 stay out of the dishwasher.
+  const auto hidden = parseHidden(
+      "(define (problem h) (:hidden (isemptybottle o1) (isemptybottle o2)))", "h", contingent);
+  const Execution run = executePlanTree(task, result.plan, task.hiddenWorld(hidden[0], "h"));
+  ASSERT_TRUE(run.reachedGoal) << run.message;
+  const auto has = [&](const std::string& step) {
+    return std::find(run.steps.begin(), run.steps.end(), step) != run.steps.end();
+  };
+  EXPECT_TRUE(has("(putdown robot1 o1 any)"));
+  EXPECT_TRUE(has("(pickup robot2 o1 any)"));
+  EXPECT_TRUE(has("(putdown robot2 o1 dishwasher)"));
+  EXPECT_TRUE(has("(putdown robot2 o2 dishwasher)"));
+  // As in the thesis, the planner senses every bottle first (sensing has no preconditions).
+  ASSERT_GE(run.steps.size(), 8u);
+  for (std::size_t i = 0; i < 8; i += 2) {
+    EXPECT_EQ(run.steps[i].rfind("(senseifempty o", 0), 0u) << run.steps[i];
+    EXPECT_EQ(run.steps[i + 1].rfind("branch (isemptybottle o", 0), 0u) << run.steps[i + 1];
+  }
+}
+
+TEST(Scenarios, BimanualAssemblyBuildsTheGearbox) {
+  const ContingentProblem contingent =
+      loadContingent(contingentPath("scenarios/bimanual-assembly-domain.pddl"),
+                     contingentPath("scenarios/bimanual-assembly.pddl"));
+  EXPECT_THROW(KnowledgeTask(contingent, ProcedureRegistry{}), InputError);  // needs `reaches`
+  KnowledgeTask task(contingent, toyGeometryProcedures());
+  const ContingentResult result = solveAndValidate(task);
+  ASSERT_EQ(result.status, SearchStatus::Solved);
+  EXPECT_EQ(measure(result.plan).leaves, 1.0);
+  const std::string text = formatPlanTree(task, result.plan);
+  EXPECT_NE(text.find("(assemblepipebearing robot1 o3 robot2"), std::string::npos) << text;
+  EXPECT_NE(text.find("(assemblebearingtree"), std::string::npos) << text;
+  EXPECT_NE(text.find("(assemblepipetree robot1 o3 o4)"), std::string::npos) << text;
+}
+
+// --- public benchmarks (copies in data/pddl/contingent) --------------------------------------
+
+struct Benchmark {
+  const char* name;
+  const char* domain;
+  const char* problem;
+};
+
+class PublicBenchmark : public ::testing::TestWithParam<Benchmark> {};
+
+TEST_P(PublicBenchmark, SolvesAndEveryBranchValidates) {
+  const Benchmark& b = GetParam();
+  const ContingentProblem contingent =
+      loadContingent(contingentPath(std::string(b.name) + "/" + b.domain),
+                     contingentPath(std::string(b.name) + "/" + b.problem));
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  const ContingentResult result = solveAndValidate(task);
+  ASSERT_EQ(result.status, SearchStatus::Solved) << b.name;
+  EXPECT_GE(measure(result.plan).leaves, 2.0) << b.name << ": a contingent plan branches";
+}
+
+INSTANTIATE_TEST_SUITE_P(Contingent, PublicBenchmark,
+                         ::testing::Values(Benchmark{"medpks", "d.pddl", "p.pddl"},
+                                           Benchmark{"ebtcs", "d.pddl", "p.pddl"},
+                                           Benchmark{"unix", "d.pddl", "p.pddl"},
+                                           Benchmark{"doors", "d.pddl", "p.pddl"},
+                                           Benchmark{"blocks", "domain.pddl", "p3.pddl"},
+                                           Benchmark{"wumpus", "d.pddl", "p.pddl"},
+                                           Benchmark{"colorballs", "d.pddl", "p.pddl"}),
+                         [](const auto& param) { return std::string(param.param.name); });
+
+TEST(HiddenExecution, EveryHiddenStateOfTheBenchmarksReachesTheGoal) {
+  for (const std::string name : {"ebtcs", "unix", "doors"}) {
+    const ContingentProblem contingent =
+        loadContingent(contingentPath(name + "/d.pddl"), contingentPath(name + "/p.pddl"));
+    KnowledgeTask task(contingent, ProcedureRegistry{});
+    const ContingentResult result = solveContingent(task, {});
+    ASSERT_EQ(result.status, SearchStatus::Solved) << name;
+    const std::string file = contingentPath(name + "/hidden.pddl");
+    const auto hidden = parseHidden(readTextFile(file), file, contingent);
+    EXPECT_GE(hidden.size(), 1u);
+    for (const HiddenState& state : hidden) {
+      const Execution run = executePlanTree(task, result.plan, task.hiddenWorld(state, file));
+      EXPECT_TRUE(run.reachedGoal) << name << " line " << state.pos.line << ": " << run.message;
+    }
+  }
+}
+
+// --- validator rejects broken plans ----------------------------------------------------------
+
+TEST(PlanTreeValidator, RejectsPlansThatDoNotBranchOrDoNotReachTheGoal) {
+  const ContingentProblem contingent =
+      parseContingent(forceSensingDomain(), "fs-domain", forceSensingProblem(1), "fs-1");
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  const auto verdict = [&](const std::string& text) {
+    return validatePlanTree(task, parsePlanTree(text, "t.plan", task), "t.plan");
+  };
+  EXPECT_TRUE(verdict("(plan (grasp o1) (senseweight o1) (branch (isspillable o1) "
+                      "(true (transferupright o1) (ungrasp o1)) "
+                      "(false (transferfast o1) (ungrasp o1))))")
+                  .valid);
+  // Transferring fast without knowing the container is empty.
+  auto bad = verdict("(plan (grasp o1) (senseweight o1) (transferfast o1) (ungrasp o1))");
+  EXPECT_FALSE(bad.valid);
+  EXPECT_NE(bad.message.find("t.plan:1:"), std::string::npos) << bad.message;
+  EXPECT_NE(bad.message.find("precondition of (transferfast o1)"), std::string::npos);
+  // Branching without sensing.
+  bad = verdict("(plan (grasp o1) (branch (isspillable o1) (true) (false)))");
+  EXPECT_FALSE(bad.valid);
+  EXPECT_NE(bad.message.find("no sensing action observed"), std::string::npos) << bad.message;
+  // One branch stops short of the goal.
+  bad = verdict(
+      "(plan (grasp o1) (senseweight o1) (branch (isspillable o1) "
+      "(true (transferupright o1) (ungrasp o1)) (false (transferfast o1))))");
+  EXPECT_FALSE(bad.valid);
+  EXPECT_NE(bad.message.find("without knowing the goal"), std::string::npos) << bad.message;
+}
+
+TEST(PlanTreeValidator, SharedNodesRoundTripThroughLabels) {
+  const std::string domain = R"((define (domain d) (:predicates (a) (x) (g))
+    (:action s :precondition (not (x)) :effect (x) :observe (a))
+    (:action go :precondition (x) :effect (g))))";
+  const ContingentProblem contingent =
+      parseTexts(domain, "(define (problem p) (:domain d) (:init (unknown (a))) (:goal (g)))");
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  const std::string text = "(plan (s) (branch (a) (true (label n1) (go)) (false (goto n1))))";
+  const PlanTree plan = parsePlanTree(text, "t.plan", task);
+  // (go) after the branch is one node reached from both sides, validated for each.
+  const TreeValidation validation = validatePlanTree(task, plan, "t.plan");
+  EXPECT_TRUE(validation.valid) << validation.message;
+  EXPECT_EQ(validation.metrics.actions, 3.0);
+  EXPECT_EQ(validation.metrics.leaves, 2.0);
+}
+
+// --- bad input ------------------------------------------------------------------------------
+
+TEST(ContingentBadInput, SensingActionThatChangesItsObservedAtom) {
+  const std::string message =
+      errorOf("(define (domain d) (:predicates (a))\n (:action s :effect (not (a)) :observe (a)))",
+              "(define (problem p) (:domain d) (:init) (:goal (a)))");
+  EXPECT_NE(message.find("d.pddl:2:"), std::string::npos) << message;
+  EXPECT_NE(message.find("changes the atom it observes"), std::string::npos) << message;
+}
+
+TEST(ContingentBadInput, ContradictoryInitialKnowledge) {
+  const std::string domain = "(define (domain d) (:predicates (a) (b)) (:action s :observe (a)))";
+  std::string message =
+      errorOf(domain, "(define (problem p) (:domain d)\n (:init (a) (not (a))) (:goal (a)))");
+  EXPECT_NE(message.find("p.pddl:2:"), std::string::npos) << message;
+  EXPECT_NE(message.find("contradictory"), std::string::npos) << message;
+  message = errorOf(
+      domain, "(define (problem p) (:domain d)\n (:init (a) (b) (oneof (a) (b))) (:goal (a)))");
+  EXPECT_NE(message.find("p.pddl:2:"), std::string::npos) << message;
+  EXPECT_NE(message.find("no world satisfies"), std::string::npos) << message;
+}
+
+TEST(ContingentBadInput, GoalThatCanNeverBecomeKnown) {
+  const std::string message =
+      errorOf("(define (domain d) (:predicates (a) (b)) (:action s :observe (b)))",
+              "(define (problem p) (:domain d) (:init (unknown (a)))\n (:goal (a)))");
+  EXPECT_NE(message.find("p.pddl:2:"), std::string::npos) << message;
+  EXPECT_NE(message.find("can never become known"), std::string::npos) << message;
+}
+
+TEST(ContingentBadInput, MalformedOneOfOrAndUnknown) {
+  const std::string domain = "(define (domain d) (:predicates (a) (b)) (:action s :observe (a)))";
+  const auto problem = [](const std::string& init) {
+    return "(define (problem p) (:domain d)\n (:init " + init + ") (:goal (a)))";
+  };
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"(oneof)", "needs at least one atom"},
+      {"(oneof (a) (oneof (b)))", "malformed 'oneof'"},
+      {"(oneof (a) (and (b)))", "malformed 'oneof'"},
+      {"(oneof (a) x)", "expected an atom"},
+      {"(oneof (a) (c))", "undefined predicate 'c'"},
+      {"(or (a) (a b))", "takes 0 argument(s)"},
+      {"(unknown (a) (b))", "'unknown' takes one atom"},
+  };
+  for (const auto& [init, expected] : cases) {
+    const std::string message = errorOf(domain, problem(init));
+    EXPECT_NE(message.find("p.pddl:2:"), std::string::npos) << init << " -> " << message;
+    EXPECT_NE(message.find(expected), std::string::npos) << init << " -> " << message;
+  }
+}
+
+TEST(ContingentBadInput, MalformedKnowledgeQueries) {
+  const auto domain = [](const std::string& precondition) {
+    return "(define (domain d) (:predicates (a)) (:functions (f))\n (:action s :precondition " +
+           precondition + " :effect (a)))";
+  };
+  const std::string problem = "(define (problem p) (:domain d) (:init) (:goal (a)))";
+  EXPECT_NE(errorOf(domain("(kw ())"), problem).find("d.pddl:2:"), std::string::npos);
+  EXPECT_NE(errorOf(domain("(kw (zz))"), problem).find("undefined predicate 'zz'"),
+            std::string::npos);
+  EXPECT_NE(errorOf(domain("(kv (g))"), problem).find("undefined function 'g'"), std::string::npos);
+  EXPECT_NE(
+      errorOf("(define (domain d) (:predicates (a))\n (:action s :observe (not (a))))", problem)
+          .find("':observe' takes atoms"),
+      std::string::npos);
+}
+
+TEST(ContingentBadInput, HiddenStateOutsideTheInitialKnowledge) {
+  const ContingentProblem contingent =
+      loadContingent(contingentPath("ebtcs/d.pddl"), contingentPath("ebtcs/p.pddl"));
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  // oneof: a package in the bomb, but not two.
+  const auto hidden =
+      parseHidden("(define (problem h)\n (:hidden (in p0 b0) (in p1 b0)))", "h", contingent);
+  try {
+    task.hiddenWorld(hidden[0], "h");
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("h:2:"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(parseHidden("(define (problem h))", "h", contingent), InputError);
+}
+
+TEST(ContingentBadInput, TooManyInitialWorldsIsAnError) {
+  const ContingentProblem contingent =
+      parseContingent(forceSensingDomain(), "fs-domain", forceSensingProblem(12), "fs-12");
+  EXPECT_THROW(KnowledgeTask(contingent, ProcedureRegistry{}, 1000), InputError);
+}
+
+}  // namespace
+}  // namespace kaboum::symbolic
