@@ -11,25 +11,28 @@ root=../shared/pddl/contingent
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
-# domain-name|domain-file|problem-file per line, smallest first.
+# domain-name|instance-directory per line, smallest first. The domain file is the directory's
+# d*.pddl or domain*.pddl, the problem its p*.pddl (first in name order).
 instances() {
   local i
-  for i in 010 030 050 070 099 150 199; do echo "medpks|$root/medpks/clg/medpks$i/d${i#0}.pddl|$root/medpks/clg/medpks$i/p${i#0}.pddl"; done
-  for i in 10 30 50 70; do echo "ebtcs|$root/ebtcs/clg/ebtcs-$i/d.pddl|$root/ebtcs/clg/ebtcs-$i/p.pddl"; done
-  for i in 1 2 3 4; do echo "unix|$root/unix/clg/unix$i/domain.pddl|$root/unix/clg/unix$i/p$i.pddl"; done
-  for i in 5 7 9 11 13 15; do echo "doors|$root/doors/clg-replanner/doors$i/d.pddl|$root/doors/clg-replanner/doors$i/p.pddl"; done
-  for i in 2-2 3-1 4-1 5-1 6-1 7-1 8-1 9-1 10-1 11-1; do echo "colorballs|$root/colorballs/clg/colorballs$i/d.pddl|$root/colorballs/clg/colorballs$i/p.pddl"; done
-  for i in 05 07 10 15 20 25; do echo "wumpus|$root/wumpus/clg-replanner/wumpus$i/d.pddl|$root/wumpus/clg-replanner/wumpus$i/p.pddl"; done
-  for i in 3 7 11 15; do echo "blocks|$root/blocks/contff/blocks-$i/domain.pddl|$root/blocks/contff/blocks-$i/p$i.pddl"; done
+  for i in 010 030 050 070 099 150 199; do echo "medpks|$root/medpks/clg/medpks$i"; done
+  for i in 10 30 50 70; do echo "ebtcs|$root/ebtcs/clg/ebtcs-$i"; done
+  for i in 1 2 3 4; do echo "unix|$root/unix/clg/unix$i"; done
+  for i in 5 7 9 11 13 15; do echo "doors|$root/doors/clg-replanner/doors$i"; done
+  for i in 2-2 3-1 4-1 5-1 6-1 7-1 8-1 9-1 10-1 11-1; do echo "colorballs|$root/colorballs/clg/colorballs$i"; done
+  for i in 05 07 10 15 20 25; do echo "wumpus|$root/wumpus/clg-replanner/wumpus$i"; done
+  for i in 3 7 11 15; do echo "blocks|$root/blocks/contff/blocks-$i"; done
 }
 
 echo "| domain | instance | initial worlds | status | search s (median of 3) | wall s | tree actions | leaves | depth |"
 echo "|---|---|---|---|---|---|---|---|---|"
 failed=""
-while IFS='|' read -r domain dfile pfile; do
-  [ -f "$dfile" ] && [ -f "$pfile" ] || { echo "missing: $dfile $pfile" >&2; continue; }
+while IFS='|' read -r domain dir; do
+  dfile=$(ls "$dir"/d*.pddl "$dir"/domain*.pddl 2>/dev/null | head -1)
+  pfile=$(ls "$dir"/p*.pddl 2>/dev/null | head -1)
+  [ -n "$dfile" ] && [ -n "$pfile" ] || { echo "missing: $dir" >&2; continue; }
   [ "$failed" = "$domain" ] && continue
-  name=$(basename "$(dirname "$pfile")")
+  name=$(basename "$dir")
   times=()
   for run in 1 2 3; do
     start=$(date +%s.%N)

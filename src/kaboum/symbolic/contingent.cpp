@@ -4,8 +4,10 @@
 #include <chrono>
 #include <functional>
 #include <map>
+#include <queue>
 #include <set>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "kaboum/core/error.hpp"
 #include "kaboum/symbolic/heuristic.hpp"
@@ -142,20 +144,10 @@ class AndOrSearch {
     if (bytes > options_.limits.memoryBytes) throw LimitReached{SearchStatus::MemoryLimit};
   }
 
-  int solve(int id, std::size_t depth) {
-    if (solved_[id] >= 0) {
-      ++stats_.reused;
-      return solved_[id];
-    }
-    if (state_[id] != kOpen || depth > options_.maxDepth) return -1;
+  // Applicable actions of knowledge state `id` with their outcome trees; relaxed dead ends dropped.
+  // Sensing actions (outcomes that branch) come first, then by worst-world heuristic value.
+  std::vector<Candidate> expand(int id) {
     const Belief& belief = *beliefs_[id];
-    if (task_.isGoal(belief)) {
-      solved_[id] = addNode({});
-      return solved_[id];
-    }
-    checkLimits();
-    ++stats_.expanded;
-    state_[id] = kOnPath;
     std::vector<Candidate> candidates;
     Belief next;
     for (std::size_t op = 0; op < task_.task().operators.size(); ++op) {
@@ -174,8 +166,7 @@ class AndOrSearch {
       }
       candidates.push_back(std::move(candidate));
     }
-    // Sensing first: splitting only adds knowledge, so a plan for the unsplit state also works in
-    // every branch; among the rest, the lowest worst-world heuristic value first.
+    // Splitting only adds knowledge, so a plan for the unsplit state also works in every branch.
     std::stable_sort(candidates.begin(), candidates.end(),
                      [](const Candidate& a, const Candidate& b) {
                        const bool aSenses = a.outcomes.size() > 1;
@@ -183,19 +174,84 @@ class AndOrSearch {
                        if (aSenses != bSenses) return aSenses;
                        return a.score < b.score;
                      });
-    for (const Candidate& candidate : candidates) {
-      const int rest = solveOutcome(candidate.outcomes, candidate.root, depth + 1);
-      if (rest < 0) continue;
-      PlanTree::Node node;
-      node.kind = PlanTree::Node::Kind::Action;
-      node.op = candidate.op;
-      node.next = rest;
-      state_[id] = kOpen;
-      solved_[id] = addNode(node);
-      return solved_[id];
+    return candidates;
+  }
+
+  int actionNode(int op, int next) {
+    PlanTree::Node node;
+    node.kind = PlanTree::Node::Kind::Action;
+    node.op = op;
+    node.next = next;
+    return addNode(node);
+  }
+
+  // Greedy best-first search from knowledge state `root` until it finds a goal, an already solved
+  // state, or a sensing action every branch of which is solved (recursively). Returns the plan
+  // node of `root`, or -1; every state on the found path is recorded as solved (shared later).
+  int solve(int root, std::size_t depth) {
+    if (solved_[root] >= 0) {
+      ++stats_.reused;
+      return solved_[root];
     }
-    state_[id] = kFailed;
-    return -1;
+    if (state_[root] != kOpen || depth > options_.maxDepth) return -1;
+    struct SearchNode {
+      int belief;
+      int parent;
+      int op;
+    };
+    std::vector<SearchNode> nodes{{root, -1, -1}};
+    std::unordered_set<int> seen{root};
+    using Entry = std::pair<int, std::size_t>;  // heuristic value, node (first in, first out)
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
+    open.push({0, 0});
+    state_[root] = kOnPath;
+    std::size_t found = 0;
+    int ending = -1;
+    while (!open.empty() && ending < 0) {
+      const std::size_t index = open.top().second;
+      open.pop();
+      const int id = nodes[index].belief;
+      if (solved_[id] >= 0) {
+        ++stats_.reused;
+        found = index;
+        ending = solved_[id];
+        break;
+      }
+      if (task_.isGoal(*beliefs_[id])) {
+        found = index;
+        ending = addNode({});
+        break;
+      }
+      checkLimits();
+      ++stats_.expanded;
+      const std::vector<Candidate> candidates = expand(id);
+      for (const Candidate& candidate : candidates) {
+        if (candidate.outcomes.size() == 1) {
+          const int child = candidate.outcomes[0].belief;
+          if (state_[child] != kOpen || !seen.insert(child).second) continue;
+          nodes.push_back({child, static_cast<int>(index), candidate.op});
+          open.push({candidate.score, nodes.size() - 1});
+          continue;
+        }
+        const int rest = solveOutcome(candidate.outcomes, candidate.root, depth + 1);
+        if (rest < 0) continue;
+        found = index;
+        ending = actionNode(candidate.op, rest);
+        break;
+      }
+    }
+    if (ending < 0) {
+      state_[root] = kFailed;
+      return -1;
+    }
+    state_[root] = kOpen;
+    int next = ending;
+    for (std::size_t i = found; i != 0; i = static_cast<std::size_t>(nodes[i].parent)) {
+      if (solved_[nodes[i].belief] < 0) solved_[nodes[i].belief] = next;
+      next = actionNode(nodes[i].op, next);
+    }
+    solved_[root] = next;
+    return next;
   }
 
   static constexpr char kOpen = 0;

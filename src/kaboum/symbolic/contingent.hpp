@@ -43,7 +43,7 @@ TreeMetrics measure(const PlanTree& plan);
 struct ContingentOptions {
   std::string heuristic = "ff";  // one of heuristicNames(), evaluated per world (maximum)
   SearchLimits limits;
-  std::size_t maxDepth = 5000;  // actions on one path
+  std::size_t maxDepth = 5000;  // nested branch points on one path
 };
 
 struct ContingentStatistics {
@@ -63,9 +63,11 @@ struct ContingentResult {
   ContingentStatistics statistics;
 };
 
-// Greedy depth-first AND–OR search: successors in order of the worst world's heuristic value,
-// sensing outcomes split eagerly into branch nodes, solved and failed knowledge states memoized.
-// Sound; incomplete where a knowledge state fails only because of a cycle on the current path.
+// AND–OR search: greedy best-first search (worst world's heuristic value) over knowledge states
+// until a goal or a sensing action whose branches are all solved by the same search, recursively.
+// Sensing outcomes split eagerly into branch nodes; solved knowledge states are shared, failed
+// ones memoized. Sound; incomplete where a branch fails only because it would loop back to a
+// knowledge state an enclosing search is still solving.
 ContingentResult solveContingent(KnowledgeTask& task, const ContingentOptions& options);
 
 // The plan as an S-expression tree, one step per line, indented by branch depth:
