@@ -121,6 +121,20 @@ TEST(Knowledge, OneOfAndOrConstrainTheInitialWorlds) {
   EXPECT_EQ(worlds("(and (unknown (a)) (oneof (b) (c)))"), 4u);
 }
 
+TEST(Knowledge, ConstantsMayComeBeforeTheirTypes) {
+  // As in the medpks benchmark files of 50 and more illnesses.
+  const ContingentProblem contingent = parseTexts(
+      "(define (domain d) (:constants a - thing) (:types thing) (:predicates (p ?x - thing))"
+      " (:action s :parameters (?x - thing) :observe (p ?x))"
+      " (:action t :parameters (?x - thing) :precondition (p ?x) :effect (not (p ?x))))",
+      "(define (problem q) (:domain d) (:init (unknown (p a))) (:goal (not (p a))))");
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  EXPECT_EQ(task.initialBelief().size(), 2u);
+  const ContingentResult result = solveAndValidate(task);
+  ASSERT_EQ(result.status, SearchStatus::Solved);
+  EXPECT_EQ(measure(result.plan).leaves, 2.0);
+}
+
 TEST(Knowledge, KvQueriesOnFunctionValues) {
   const std::string domain = R"((define (domain w) (:types o)
     (:predicates (held ?x - o) (done ?x - o))

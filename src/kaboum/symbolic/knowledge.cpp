@@ -262,7 +262,7 @@ ContingentProblem parseContingent(std::string_view domainText, const std::string
   ContingentProblem out;
   std::vector<SExpr> domainTop = readSExprs(domainText, domainFile);
   Rewriter rewriter(domainFile);
-  if (domainTop.size() == 1 && domainTop[0].startsWith("define")) {
+  if (domainTop.size() == 1 && domainTop[0].startsWith("define") && domainTop[0].items.size() > 2) {
     SExpr& define = domainTop[0];
     for (std::size_t i = 2; i < define.items.size(); ++i) {
       SExpr& part = define.items[i];
@@ -272,6 +272,10 @@ ContingentProblem parseContingent(std::string_view domainText, const std::string
       }
     }
     declareKnowledgePredicates(define, rewriter, domainFile);
+    // Some benchmark domains declare constants before their types: declare types first.
+    std::stable_partition(define.items.begin() + 2, define.items.end(), [](const SExpr& part) {
+      return part.startsWith(":requirements") || part.startsWith(":types");
+    });
   }
   out.domain = parseDomain(domainTop, domainFile);
 
