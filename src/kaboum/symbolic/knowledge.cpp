@@ -602,7 +602,7 @@ void KnowledgeTask::enumerateWorlds(std::size_t maxWorlds) {
 
 // A goal atom that is unknown initially, that no operator changes and that no operator observes
 // can never become known: reject the problem instead of searching forever.
-void KnowledgeTask::checkGoalKnowable() const {
+void KnowledgeTask::checkGoalKnowable() {
   if (task_.goal.size() != 1) return;
   std::vector<char> touched(task_.atomNames.size(), 0);
   const auto mark = [&](const EffectList& effect) {
@@ -648,35 +648,33 @@ const std::vector<int>& KnowledgeTask::variants(int op) const {
   return operatorIds_.at("(" + task_.operators[op].name + ")");
 }
 
-bool KnowledgeTask::known(AtomId atom, const Belief& belief, bool& value) const {
-  value = world(belief.front()).atom(atom);
-  for (const std::uint32_t w : belief) {
-    if (world(w).atom(atom) != value) return false;
-  }
-  return true;
+bool KnowledgeTask::known(AtomId atom, const Belief& belief, bool& value) {
+  summarize(belief);
+  value = (allWorlds_[atom >> 6] >> (atom & 63)) & 1u;
+  return value || !((anyWorld_[atom >> 6] >> (atom & 63)) & 1u);
 }
 
-bool KnowledgeTask::kwHolds(AtomId atom, const Belief& belief) const {
+bool KnowledgeTask::kwHolds(AtomId atom, const Belief& belief) {
   bool value = false;
   if (known(atom, belief, value) && value) return true;
   const AtomId base = kwBase_[atom];
   return base == kNoBase || known(base, belief, value);
 }
 
-bool KnowledgeTask::kvHolds(AtomId atom, const Belief& belief) const {
+bool KnowledgeTask::kvHolds(AtomId atom, const Belief& belief) {
   bool value = false;
   if (known(atom, belief, value) && value) return true;
   return kvBase_[atom] != kNoBase && fluentKnown(kvBase_[atom], belief);
 }
 
-bool KnowledgeTask::fluentKnown(FluentId fluent, const Belief& belief) const {
+bool KnowledgeTask::fluentKnown(FluentId fluent, const Belief& belief) {
   const double first = world(belief.front()).fluent(fluent);
   if (std::isnan(first)) return false;
   return std::all_of(belief.begin(), belief.end(),
                      [&](std::uint32_t w) { return world(w).fluent(fluent) == first; });
 }
 
-bool KnowledgeTask::knowsWhether(AtomId atom, const Belief& belief) const {
+bool KnowledgeTask::knowsWhether(AtomId atom, const Belief& belief) {
   bool value = false;
   if (known(atom, belief, value)) return true;
   for (const AtomId k : knowledgeAtoms_) {
@@ -704,7 +702,7 @@ bool KnowledgeTask::applicable(int op, const Belief& belief) {
          allWorlds(preconditionTests_[op], belief);
 }
 
-bool KnowledgeTask::holdsAtoms(const Condition& condition, const Belief& belief) const {
+bool KnowledgeTask::holdsAtoms(const Condition& condition, const Belief& belief) {
   bool value = false;
   for (const AtomId atom : condition.positive) {
     if (kwBase_[atom] != kNotKnowledge) {
@@ -750,16 +748,39 @@ bool KnowledgeTask::apply(int op, const Belief& belief, Belief& out) {
 }
 
 // Drops Kw/Kv atoms whose subject is known anyway, so equal knowledge has one representation.
+// Atoms true in some world (`anyWorld_`) and in every world (`allWorlds_`) of `belief`; kept
+// until asked about another knowledge state.
+void KnowledgeTask::summarize(const Belief& belief) {
+  if (summarized_ == belief && !anyWorld_.empty()) return;
+  summarized_ = belief;
+  const std::size_t words = evaluator_.layout().atomBitset(1);
+  anyWorld_.assign(words, 0);
+  allWorlds_.assign(words, ~std::uint64_t{0});
+  for (const std::uint32_t w : belief) {
+    const std::uint64_t* bits = world(w).words();
+    for (std::size_t i = 0; i < words; ++i) {
+      anyWorld_[i] |= bits[i];
+      allWorlds_[i] &= bits[i];
+    }
+  }
+}
+
+namespace {
+bool bit(const std::vector<std::uint64_t>& words, AtomId atom) {
+  return (words[atom >> 6] >> (atom & 63)) & 1u;
+}
+}  // namespace
+
+// Drops Kw/Kv atoms whose subject is known anyway, so equal knowledge has one representation.
 void KnowledgeTask::canonicalize(Belief& belief) {
+  summarize(belief);
   bool changed = false;
   for (const AtomId k : knowledgeAtoms_) {
-    bool present = false;
-    for (const std::uint32_t w : belief) present = present || world(w).atom(k);
-    if (!present) continue;
-    bool value = false;
-    const bool subjectKnown = kwBase_[k] != kNotKnowledge
-                                  ? kwBase_[k] == kNoBase || known(kwBase_[k], belief, value)
-                                  : kvBase_[k] != kNoBase && fluentKnown(kvBase_[k], belief);
+    if (!bit(anyWorld_, k)) continue;
+    const AtomId base = kwBase_[k];
+    const bool subjectKnown =
+        base != kNotKnowledge ? base == kNoBase || bit(allWorlds_, base) || !bit(anyWorld_, base)
+                              : kvBase_[k] != kNoBase && fluentKnown(kvBase_[k], belief);
     if (!subjectKnown) continue;
     for (std::uint32_t& w : belief) {
       const StateView view = world(w);
@@ -776,11 +797,12 @@ void KnowledgeTask::canonicalize(Belief& belief) {
   }
 }
 
-AtomId KnowledgeTask::pendingObservation(const Belief& belief) const {
-  bool value = false;
+AtomId KnowledgeTask::pendingObservation(const Belief& belief) {
+  summarize(belief);
   for (const AtomId k : knowledgeAtoms_) {
-    if (kwBase_[k] < 0) continue;
-    if (known(k, belief, value) && value && !known(kwBase_[k], belief, value)) return kwBase_[k];
+    const AtomId base = kwBase_[k];
+    if (base < 0 || !bit(allWorlds_, k)) continue;
+    if (bit(anyWorld_, base) && !bit(allWorlds_, base)) return base;
   }
   return -1;
 }

@@ -92,9 +92,9 @@ class KnowledgeTask {
 
   // An atom the agent will know at run time but does not know now (Kw(p), neither K(p) nor K(¬p)):
   // the planner branches on it. -1 if none.
-  AtomId pendingObservation(const Belief& belief) const;
+  AtomId pendingObservation(const Belief& belief);
   // Whether `atom` may be branched on: Kw(atom) holds.
-  bool knowsWhether(AtomId atom, const Belief& belief) const;
+  bool knowsWhether(AtomId atom, const Belief& belief);
   // Splits `belief` on `atom` (branch(φ), Figure 3.2); either side may be empty.
   void split(AtomId atom, const Belief& belief, Belief& onTrue, Belief& onFalse);
 
@@ -111,16 +111,17 @@ class KnowledgeTask {
   const std::vector<int>& variants(int op) const;
 
  private:
-  bool known(AtomId atom, const Belief& belief, bool& value) const;
-  bool kwHolds(AtomId atom, const Belief& belief) const;
-  bool kvHolds(AtomId atom, const Belief& belief) const;
-  bool fluentKnown(FluentId fluent, const Belief& belief) const;
-  bool holdsAtoms(const Condition& condition, const Belief& belief) const;
+  bool known(AtomId atom, const Belief& belief, bool& value);
+  bool kwHolds(AtomId atom, const Belief& belief);
+  bool kvHolds(AtomId atom, const Belief& belief);
+  bool fluentKnown(FluentId fluent, const Belief& belief);
+  bool holdsAtoms(const Condition& condition, const Belief& belief);
   bool allWorlds(const Condition& tests, const Belief& belief);
   void canonicalize(Belief& belief);
+  void summarize(const Belief& belief);
   std::uint32_t store(std::span<const std::uint64_t> words);
   void enumerateWorlds(std::size_t maxWorlds);
-  void checkGoalKnowable() const;
+  void checkGoalKnowable();
 
   const ContingentProblem& contingent_;
   std::unique_ptr<AttachmentRuntime> attachments_;
@@ -138,6 +139,9 @@ class KnowledgeTask {
   std::vector<FluentId> kvBase_;         // per atom: fluent of a (kv.f …) atom
   std::vector<AtomId> knowledgeAtoms_;   // all (kw.…) and (kv.…) atoms
   std::vector<std::uint64_t> scratch_;
+  std::vector<std::uint64_t> anyWorld_;
+  std::vector<std::uint64_t> allWorlds_;
+  Belief summarized_;
 };
 
 }  // namespace kaboum::symbolic
