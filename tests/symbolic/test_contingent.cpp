@@ -341,12 +341,25 @@ TEST(PlanTreeValidator, RejectsPlansThatDoNotBranchOrDoNotReachTheGoal) {
   EXPECT_NE(bad.message.find("without knowing the goal"), std::string::npos) << bad.message;
 }
 
-TEST(PlanTreeValidator, SharedNodesRoundTripThroughLabels) {
-  const std::string domain = R"((define (domain d) (:predicates (a) (x) (g))
+const std::string kSenseThenGo = R"((define (domain d) (:predicates (a) (x) (g))
     (:action s :precondition (not (x)) :effect (x) :observe (a))
     (:action go :precondition (x) :effect (g))))";
-  const ContingentProblem contingent =
-      parseTexts(domain, "(define (problem p) (:domain d) (:init (unknown (a))) (:goal (g)))");
+
+TEST(PlanTreeValidator, RejectsPlansThatLoop) {
+  const ContingentProblem contingent = parseTexts(
+      kSenseThenGo, "(define (problem p) (:domain d) (:init (unknown (a))) (:goal (g)))");
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  const PlanTree plan = parsePlanTree(
+      "(plan (s) (branch (a)\n (true (label n1) (go) (goto n1)) (false (go))))", "loop.plan", task);
+  const TreeValidation validation = validatePlanTree(task, plan, "loop.plan");
+  EXPECT_FALSE(validation.valid);
+  EXPECT_NE(validation.message.find("loop.plan:2:"), std::string::npos) << validation.message;
+  EXPECT_NE(validation.message.find("loops back"), std::string::npos) << validation.message;
+}
+
+TEST(PlanTreeValidator, SharedNodesRoundTripThroughLabels) {
+  const ContingentProblem contingent = parseTexts(
+      kSenseThenGo, "(define (problem p) (:domain d) (:init (unknown (a))) (:goal (g)))");
   KnowledgeTask task(contingent, ProcedureRegistry{});
   const std::string text = "(plan (s) (branch (a) (true (label n1) (go)) (false (goto n1))))";
   const PlanTree plan = parsePlanTree(text, "t.plan", task);

@@ -302,9 +302,10 @@ TreeMetrics measure(const PlanTree& plan) {
     std::size_t depth = 0;
   };
   std::vector<Sizes> memo(plan.nodes.size());
-  std::vector<char> done(plan.nodes.size(), 0);
+  std::vector<char> done(plan.nodes.size(), 0);  // 0 new, 1 in progress (a loop), 2 done
   const std::function<const Sizes&(int)> visit = [&](int index) -> const Sizes& {
-    if (done[index]) return memo[index];
+    if (done[index] != 0) return memo[index];
+    done[index] = 1;
     const PlanTree::Node& node = plan.nodes[index];
     Sizes s;
     if (node.kind == PlanTree::Node::Kind::Goal) {
@@ -319,7 +320,7 @@ TreeMetrics measure(const PlanTree& plan) {
       s = {t.actions + f.actions, t.branches + f.branches + 1, t.leaves + f.leaves,
            std::max(t.depth, f.depth)};
     }
-    done[index] = 1;
+    done[index] = 2;
     memo[index] = s;
     return memo[index];
   };
@@ -328,7 +329,7 @@ TreeMetrics measure(const PlanTree& plan) {
   out.branches = root.branches;
   out.leaves = root.leaves;
   out.depth = root.depth;
-  out.dagNodes = static_cast<std::size_t>(std::count(done.begin(), done.end(), 1));
+  out.dagNodes = static_cast<std::size_t>(std::count(done.begin(), done.end(), 2));
   return out;
 }
 
@@ -486,9 +487,9 @@ TreeValidation validatePlanTree(KnowledgeTask& task, const PlanTree& plan,
     return locate(file, what, node.pos.line, node.pos.column);
   };
   const std::function<std::string(int, const Belief&)> walk = [&](int index, const Belief& belief) {
-    if (!checked.insert({index, belief}).second) return std::string();
     const PlanTree::Node& node = plan.nodes[index];
-    if (onPath[index]) return at(node, "the plan loops");
+    if (onPath[index]) return at(node, "the plan loops back to an earlier step");
+    if (!checked.insert({index, belief}).second) return std::string();
     onPath[index] = 1;
     std::string failure;
     if (node.kind == PlanTree::Node::Kind::Goal) {
