@@ -134,10 +134,12 @@ class KnowledgeTask {
   std::unordered_map<std::string, AtomId> atomIds_;
   std::unordered_map<std::string, std::vector<int>> operatorIds_;
   static constexpr AtomId kNotKnowledge = -1;
-  static constexpr AtomId kNoBase = -2;  // Kw/Kv of something unreachable: always known
-  std::vector<AtomId> kwBase_;           // per atom: base atom of a (kw.p …) atom
-  std::vector<FluentId> kvBase_;         // per atom: fluent of a (kv.f …) atom
-  std::vector<AtomId> knowledgeAtoms_;   // all (kw.…) and (kv.…) atoms
+  // Base of a Kw atom that is never true (so always known false), or of a Kv atom over a static
+  // function (known only if :init gives its value, which sets the Kv atom).
+  static constexpr AtomId kNoBase = -2;
+  std::vector<AtomId> kwBase_;          // per atom: base atom of a (kw.p …) atom
+  std::vector<FluentId> kvBase_;        // per atom: fluent of a (kv.f …) atom
+  std::vector<AtomId> knowledgeAtoms_;  // all (kw.…) and (kv.…) atoms
   std::vector<std::uint64_t> scratch_;
   std::vector<std::uint64_t> anyWorld_;
   std::vector<std::uint64_t> allWorlds_;
