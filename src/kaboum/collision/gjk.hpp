@@ -83,8 +83,8 @@ bool reduceSimplex(Simplex& simplex, Vec3& closest);
 enum class GjkExit { separated, intersecting, converged, stalled };
 
 // The GJK loop. Boolean mode stops as soon as a support point certifies distance > margin +
-// tolerance.absolute, or the simplex comes within `margin` of the origin; distance mode runs to
-// convergence and tracks the best certified lower bound.
+// tolerance.absolute, or the simplex comes within margin + tolerance.absolute of the origin;
+// distance mode runs to convergence and tracks the best certified lower bound.
 template <bool kBoolean, SupportMapping A, SupportMapping B>
 GjkExit runGjk(const A& a, const B& b, double margin, GjkCache<A, B>* cache,
                const GjkTolerance& tolerance, Simplex& simplex, double& lowerBound,
@@ -97,8 +97,10 @@ GjkExit runGjk(const A& a, const B& b, double margin, GjkCache<A, B>* cache,
     hintB = cache->hintB;
     v = cache->direction;
   }
-  if (!(v.squaredNorm() > 0.0)) v = a.center() - b.center();
-  if (!(v.squaredNorm() > 0.0)) v = Vec3::UnitX();
+  // Directions too short to square without underflow are replaced.
+  constexpr double kShortestSquared = 1e-200;
+  if (!(v.squaredNorm() > kShortestSquared)) v = a.center() - b.center();
+  if (!(v.squaredNorm() > kShortestSquared)) v = Vec3::UnitX();
 
   const double separation = margin + tolerance.absolute;
   simplex.size = 0;
@@ -136,7 +138,9 @@ GjkExit runGjk(const A& a, const B& b, double margin, GjkCache<A, B>* cache,
       break;
     }
     const double closestSquared = v.squaredNorm();
-    const double touching = kBoolean ? margin : tolerance.absolute;
+    // |v| bounds the distance from above: within the band, answer "intersects" (this also keeps
+    // |v| >= tolerance.absolute, far from underflow in the certificate above).
+    const double touching = kBoolean ? separation : tolerance.absolute;
     if (closestSquared <= touching * touching) {
       exit = GjkExit::intersecting;
       break;
