@@ -39,7 +39,7 @@ void expectExactSupport(const ConvexPolytope& polytope, const std::vector<Vec3>&
 }
 
 TEST(ConvexPolytope, SupportIsTheMaximumOverAllPointsForEverySize) {
-  for (const int n : {4, 8, 16, 32, 33, 64, 256}) {
+  for (const int n : {4, 8, 16, 32, 64, 65, 256}) {
     const auto pair = randomPolytopePairs(1, n, 100 + static_cast<std::uint64_t>(n)).front();
     const ConvexPolytope polytope(pair.localA);
     EXPECT_EQ(polytope.vertexCount(), static_cast<std::size_t>(n));

@@ -32,7 +32,6 @@ ConvexPolytope::ConvexPolytope(const ConvexHull& hull) : vertices_(hull.mesh.ver
   center_ = Vec3::Zero();
   box_.setEmpty();
   for (const Vec3& v : vertices_) {
-    coordinates_.insert(coordinates_.end(), {v.x(), v.y(), v.z()});
     center_ += v;
     box_.extend(v);
   }

@@ -15,6 +15,8 @@
 namespace kaboum::collision {
 
 // The convex hull of a point set in its own (local) frame. Satisfies SupportMapping.
+static_assert(sizeof(Vec3) == 3 * sizeof(double), "support loops read vertices as packed doubles");
+
 class ConvexPolytope {
  public:
   static constexpr std::uint32_t kNoVertex = UINT32_MAX;
@@ -26,7 +28,7 @@ class ConvexPolytope {
 
   // Up to this many vertices, support() scans all of them (measured faster than climbing,
   // see docs/collision.md); above, it climbs the edge graph.
-  static constexpr std::size_t kBruteForceMaxVertices = 32;
+  static constexpr std::size_t kBruteForceMaxVertices = 64;
 
   // The hull of `points` (interior and duplicated points dropped). Throws InputError (naming
   // `what`) for fewer than four points, non-finite points or points without volume.
@@ -61,9 +63,9 @@ class ConvexPolytope {
   std::uint32_t bestSeed(const Vec3& direction) const;
   std::uint32_t scan(const Vec3& direction) const;
 
+  // Eigen::Vector3d is three unpadded doubles, so the support loops read these as packed
+  // x y z x y z ... (one copy of the coordinates: the workload is often cache-cold).
   std::vector<Vec3> vertices_;
-  // The same coordinates packed x y z x y z ... for the support loops.
-  std::vector<double> coordinates_;
   // Compressed adjacency: neighbors of vertex i are neighbors_[neighborBegin_[i] ..
   // neighborBegin_[i+1]).
   std::vector<std::uint32_t> neighborBegin_;
@@ -106,7 +108,7 @@ inline std::uint32_t ConvexPolytope::scan(const Vec3& direction) const {
   const double dx = direction.x();
   const double dy = direction.y();
   const double dz = direction.z();
-  const double* p = coordinates_.data();
+  const double* p = vertices_.front().data();
   std::uint32_t best = 0;
   double bestDot = dx * p[0] + dy * p[1] + dz * p[2];
   const auto n = static_cast<std::uint32_t>(vertices_.size());
@@ -126,7 +128,7 @@ inline std::uint32_t ConvexPolytope::climb(const Vec3& direction, std::uint32_t 
   const double dx = direction.x();
   const double dy = direction.y();
   const double dz = direction.z();
-  const double* p = coordinates_.data();
+  const double* p = vertices_.front().data();
   const auto dot = [&](std::uint32_t v) {
     return dx * p[3 * v] + dy * p[3 * v + 1] + dz * p[3 * v + 2];
   };
