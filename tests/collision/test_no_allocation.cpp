@@ -1,0 +1,69 @@
+// The collision module's hot paths allocate nothing per call (GJK boolean and distance, warm and
+// cold). Counts global operator new calls around each call; the one replacement of operator new
+// in test_collision lives here — add further collision hot paths to this file.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include "kaboum/collision/convex_polytope.hpp"
+#include "kaboum/collision/gjk.hpp"
+#include "kaboum/collision/polytope_pairs.hpp"
+
+// The replacements below pair malloc/free themselves; GCC cannot see that through inlining.
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+
+namespace {
+std::atomic<long> allocations{0};
+}  // namespace
+
+void* operator new(std::size_t size) {
+  ++allocations;
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+  std::free(p);
+}
+
+namespace kaboum::collision {
+namespace {
+
+template <typename F>
+long allocationsDuring(F&& call) {
+  const long before = allocations.load();
+  call();
+  return allocations.load() - before;
+}
+
+TEST(NoAllocation, GjkQueries) {
+  for (const int n : {8, 64}) {
+    const auto pairs = randomPolytopePairs(50, n, 3);
+    std::vector<ConvexPolytope> a, b;
+    for (const PolytopePair& pair : pairs) {
+      a.emplace_back(pair.localA);
+      b.emplace_back(pair.localB);
+    }
+    GjkCache<TransformedSupport, TransformedSupport> cache;
+    int hits = 0;
+    const long counted = allocationsDuring([&] {
+      for (std::size_t i = 0; i < pairs.size(); ++i) {
+        const TransformedSupport placedA(a[i], pairs[i].poseA);
+        const TransformedSupport placedB(b[i], pairs[i].poseB);
+        hits += intersects(placedA, placedB) ? 1 : 0;
+        hits += intersects(placedA, placedB, 0.1, &cache) ? 1 : 0;
+        hits += distance(placedA, placedB).intersecting ? 1 : 0;
+        hits += distance(placedA, placedB, &cache).intersecting ? 1 : 0;
+      }
+    });
+    EXPECT_EQ(counted, 0) << "N=" << n;
+    EXPECT_GT(hits, 0);
+  }
+}
+
+}  // namespace
+}  // namespace kaboum::collision
