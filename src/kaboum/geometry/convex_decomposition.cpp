@@ -375,24 +375,42 @@ double largestDistanceToConvex(const std::vector<Vec3>& points, const ConvexHull
 
 // §4.4.2 step 3: the convex hull of an outer bounding mesh of `piece`. It contains the piece and is
 // convex; as the distance to a convex set is a convex function, its largest distance to the piece
-// is attained at its vertices, which is measured exactly. Quadric-error limits from 4·budget down
-// are tried and the first result within `budget` is kept; the piece itself if none is.
+// is attained at its vertices, which is measured exactly. The quadric-error limit of the bounding
+// mesh algorithm only estimates that distance, so it is searched: halved from 8·budget until the
+// result is within `budget`, then bisected towards the failing limit; the result with the fewest
+// vertices within `budget` is kept, the piece itself if there is none.
 std::pair<ConvexHull, double> simplifyPiece(const ConvexHull& piece, double budget) {
-  for (const double factor : {4.0, 2.0, 1.0, 0.5, 0.25}) {
+  std::pair<ConvexHull, double> best{piece, 0.0};
+  const auto attempt = [&](double limit) {
     BoundingMeshOptions options;
     options.side = BoundSide::Outer;
-    options.maxError = factor * budget;
+    options.maxError = limit;
     ConvexHull simplified;
     try {
       simplified = convexHull(simplifyBounding(piece.mesh, options).mesh.vertices, "piece");
     } catch (const InputError&) {
-      continue;
+      return false;
     }
-    if (simplified.mesh.vertexCount() >= piece.mesh.vertexCount()) break;
     const double growth = largestDistanceToConvex(simplified.mesh.vertices, piece);
-    if (growth <= budget) return {std::move(simplified), growth};
+    if (growth > budget) return false;
+    if (simplified.mesh.vertexCount() < best.first.mesh.vertexCount()) {
+      best = {std::move(simplified), growth};
+    }
+    return true;
+  };
+  double failing = 8.0 * budget;
+  if (attempt(failing)) return best;
+  double passing = failing;
+  for (int halvings = 0; halvings < 5; ++halvings) {
+    passing *= 0.5;
+    if (attempt(passing)) break;
+    failing = passing;
   }
-  return {piece, 0.0};
+  for (int bisections = 0; bisections < 3; ++bisections) {
+    const double middle = 0.5 * (passing + failing);
+    (attempt(middle) ? passing : failing) = middle;
+  }
+  return best;
 }
 
 // Welded, outward, hole-filled copy of the input; InputError for unusable input.
@@ -429,6 +447,9 @@ bool ConvexPiece::contains(const Vec3& p, double tolerance) const {
 
 Decomposition decomposeBounding(const TriangleMesh& mesh, const DecompositionOptions& options) {
   const auto start = std::chrono::steady_clock::now();
+  if (std::isnan(options.epsilon) || options.epsilon < 0.0) {
+    throw InputError("epsilon must be a positive distance");
+  }
   Decomposition result;
   DecompositionStats& stats = result.stats;
   stats.inputVertices = mesh.vertexCount();
