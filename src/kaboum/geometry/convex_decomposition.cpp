@@ -413,6 +413,50 @@ std::pair<ConvexHull, double> simplifyPiece(const ConvexHull& piece, double budg
   return best;
 }
 
+// The edge-connected components of `mesh` as separate meshes, each with a flag: closed (every
+// edge has exactly two triangles).
+std::vector<std::pair<TriangleMesh, bool>> splitComponents(const TriangleMesh& mesh) {
+  const EdgeNeighbors neighbors = findEdgeNeighbors(mesh);
+  const std::size_t count = mesh.triangles.size();
+  constexpr std::uint32_t kUnset = 0xffffffffu;
+  std::vector<std::uint32_t> component(count, kUnset);
+  std::vector<std::pair<TriangleMesh, bool>> components;
+  std::vector<std::uint32_t> vertexMap(mesh.vertices.size(), kUnset);
+  std::vector<std::uint32_t> stack, touched;
+  for (std::size_t seed = 0; seed < count; ++seed) {
+    if (component[seed] != kUnset) continue;
+    auto& [part, closed] = components.emplace_back(TriangleMesh{}, true);
+    const auto id = static_cast<std::uint32_t>(components.size() - 1);
+    component[seed] = id;
+    stack.assign(1, static_cast<std::uint32_t>(seed));
+    while (!stack.empty()) {
+      const std::uint32_t t = stack.back();
+      stack.pop_back();
+      Triangle local{};
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t v = mesh.triangles[t][k];
+        if (vertexMap[v] == kUnset) {
+          vertexMap[v] = static_cast<std::uint32_t>(part.vertices.size());
+          part.vertices.push_back(mesh.vertices[v]);
+          touched.push_back(v);
+        }
+        local[k] = vertexMap[v];
+        const std::uint32_t other = neighbors.across[3 * t + k];
+        if (other >= count) {
+          closed = false;  // border, non-manifold edge or repeated index
+        } else if (component[other] == kUnset) {
+          component[other] = id;
+          stack.push_back(other);
+        }
+      }
+      part.triangles.push_back(local);
+    }
+    for (const std::uint32_t v : touched) vertexMap[v] = kUnset;  // shared with later components
+    touched.clear();
+  }
+  return components;
+}
+
 // Welded, outward, hole-filled copy of the input; InputError for unusable input.
 TriangleMesh closedInput(const TriangleMesh& mesh, DecompositionStats& stats) {
   if (mesh.triangles.empty()) throw InputError("mesh has no triangles");
@@ -465,21 +509,30 @@ Decomposition decomposeBounding(const TriangleMesh& mesh, const DecompositionOpt
   if (options.maxPieces == 0) throw InputError("the piece limit must be at least 1");
   const double tolerance = 1e-12 * stats.diagonal;
 
-  // Step 1: an outer bounding mesh at about ε/10 (Hausdorff distance measured on samples). The
-  // bounding mesh algorithm keeps its result outside an embedded input; a self-intersecting input
-  // (common in CAD exports, and hole caps can fold) has no well-defined outside, so it is
-  // decomposed as it is: step 2 then contains its whole surface by construction.
-  TriangleMesh bound = closed;
+  // Step 1: an outer bounding mesh at about ε/10 (Hausdorff distance measured on samples), for
+  // every edge-connected component on its own (components may overlap; the solid is their union).
+  // The bounding mesh algorithm keeps its result outside an embedded closed input; a component
+  // that is open (non-manifold edges) or self-intersecting (common in CAD exports; hole caps can
+  // fold) has no well-defined outside and is kept as it is: step 2 contains its whole surface.
+  TriangleMesh bound;
   double boundError = 0.0;
-  stats.selfIntersectingPairs = countSelfIntersections(closed);
-  if (stats.selfIntersectingPairs == 0) {
-    BoundingMeshOptions boundOptions;
-    boundOptions.side = BoundSide::Outer;
-    HausdorffReport boundDistance;
-    bound = simplifyBoundingWithin(closed, boundOptions, kBoundShare * stats.epsilon, 2000,
-                                   boundDistance, 3)
-                .mesh;
-    boundError = boundDistance.resultToOriginal.max;
+  for (auto& [part, partClosed] : splitComponents(closed)) {
+    if (partClosed && countSelfIntersections(part) == 0) {
+      BoundingMeshOptions boundOptions;
+      boundOptions.side = BoundSide::Outer;
+      HausdorffReport boundDistance;
+      part = simplifyBoundingWithin(part, boundOptions, kBoundShare * stats.epsilon, 2000,
+                                    boundDistance, 3)
+                 .mesh;
+      boundError = std::max(boundError, boundDistance.resultToOriginal.max);
+    } else {
+      ++stats.componentsKept;
+    }
+    const auto offset = static_cast<std::uint32_t>(bound.vertices.size());
+    bound.vertices.insert(bound.vertices.end(), part.vertices.begin(), part.vertices.end());
+    for (const Triangle& t : part.triangles) {
+      bound.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    }
   }
   stats.boundedVertices = bound.vertexCount();
 

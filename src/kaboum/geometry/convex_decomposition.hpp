@@ -39,14 +39,14 @@ struct ConvexPiece {
 
 struct DecompositionStats {
   std::size_t inputVertices = 0, inputTriangles = 0;
-  std::size_t holesFilled = 0;            // border loops capped (hole_filling.hpp)
-  std::size_t selfIntersectingPairs = 0;  // of the hole-filled input; step 1 is skipped if any
-  std::size_t boundedVertices = 0;        // after §4.4.2 step 1 (outer bounding mesh at ε/10)
-  std::size_t hullVertices = 0;           // all pieces before step 3
-  std::size_t totalVertices = 0;          // all pieces after step 3
-  double epsilon = 0.0;                   // absolute ε used
-  double diagonal = 0.0;                  // bounding-box diagonal of the input
-  double estimatedError = 0.0;  // step 1 bound + largest concavity + largest step-3 growth
+  std::size_t holesFilled = 0;      // border loops capped (hole_filling.hpp)
+  std::size_t componentsKept = 0;   // open or self-intersecting components step 1 left unbounded
+  std::size_t boundedVertices = 0;  // after §4.4.2 step 1 (outer bounding mesh at ε/10)
+  std::size_t hullVertices = 0;     // all pieces before step 3
+  std::size_t totalVertices = 0;    // all pieces after step 3
+  double epsilon = 0.0;             // absolute ε used
+  double diagonal = 0.0;            // bounding-box diagonal of the input
+  double estimatedError = 0.0;      // step 1 bound + largest concavity + largest step-3 growth
   std::size_t splits = 0, merges = 0;
   std::string stopReason;  // "within epsilon" or "piece limit reached"
   double seconds = 0.0;
@@ -60,7 +60,7 @@ struct Decomposition {
 
 // The §4.4.2 procedure. Input: any triangle mesh that can be oriented consistently (welded here;
 // open meshes are closed by fillHoles first). Step 1 bounds it from outside at ε/10 (bounding
-// mesh algorithm; skipped for a self-intersecting input, which has no well-defined outside), step 2
+// mesh algorithm, per component; open or self-intersecting components are left as they are), step 2
 // splits the bound hierarchically by planes, each cell C giving the piece conv((bound surface ∩ C)
 // ∪ (corners of C inside the bound)), which contains the bound's solid inside C, so the union
 // contains the whole solid (docs/decomposition.md has the argument), and step 3 replaces every
