@@ -79,6 +79,7 @@ class Solid {
 // The part of the bound inside one convex cell of the hierarchical split: the bound's triangles
 // clipped to the cell (convex polygons, stored flat) and the cell's walls and corners.
 struct Cell {
+  std::vector<Vec3> points;  // the distinct polygon corners (sorted by sortPoints)
   std::vector<Vec3> polygonPoints;
   std::vector<std::uint32_t> polygonEnds;  // end offset of every polygon in polygonPoints
   std::vector<HullPlane> walls;            // n.x <= d inside
@@ -90,7 +91,27 @@ struct Cell {
   int stalls = 0;  // splits in a row, up to this cell, that left the concavity nearly unchanged
 };
 
-// Keeps the part of every polygon with n.x <= d + tolerance (Sutherland-Hodgman).
+bool lexicographicLess(const Vec3& a, const Vec3& b) {
+  return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+}
+
+void sortPoints(std::vector<Vec3>& points) {
+  std::sort(points.begin(), points.end(), lexicographicLess);
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+}
+
+// Where the edge pq crosses the plane (signed distances sp, sq of opposite signs), computed from
+// the lexicographically smaller end so that both triangles of an edge give the same bits.
+Vec3 crossing(const Vec3& p, const Vec3& q, double sp, double sq) {
+  if (lexicographicLess(q, p)) return q + (p - q) * (sq / (sq - sp));
+  return p + (q - p) * (sp / (sp - sq));
+}
+
+bool crosses(double sp, double sq, double tolerance) {
+  return (sp < -tolerance && sq > tolerance) || (sp > tolerance && sq < -tolerance);
+}
+
+// Keeps the part of every polygon of `from` with n.x <= d + tolerance (Sutherland-Hodgman).
 void clipPolygons(const Cell& from, const HullPlane& plane, double tolerance, Cell& to) {
   to.polygonPoints.clear();
   to.polygonEnds.clear();
@@ -103,15 +124,39 @@ void clipPolygons(const Cell& from, const HullPlane& plane, double tolerance, Ce
       const double sp = plane.normal.dot(p) - plane.offset;
       const double sq = plane.normal.dot(q) - plane.offset;
       if (sp <= tolerance) to.polygonPoints.push_back(p);
-      if ((sp < -tolerance && sq > tolerance) || (sp > tolerance && sq < -tolerance)) {
-        to.polygonPoints.push_back(p + (q - p) * (sp / (sp - sq)));
-      }
+      if (crosses(sp, sq, tolerance)) to.polygonPoints.push_back(crossing(p, q, sp, sq));
     }
     if (to.polygonPoints.size() > before) {
       to.polygonEnds.push_back(static_cast<std::uint32_t>(to.polygonPoints.size()));
     }
     begin = end;
   }
+}
+
+// The distinct corners the clipped polygons of `from` would have on the side n.x <= d +
+// tolerance: its own points on that side and the crossings of its polygon edges (without
+// building the polygons, which only the chosen split needs).
+void clipPoints(const Cell& from, const HullPlane& plane, double tolerance, Cell& to) {
+  to.points.clear();
+  for (const Vec3& p : from.points) {
+    if (plane.normal.dot(p) - plane.offset <= tolerance) to.points.push_back(p);
+  }
+  const auto kept = static_cast<std::ptrdiff_t>(to.points.size());
+  std::uint32_t begin = 0;
+  for (const std::uint32_t end : from.polygonEnds) {
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const Vec3& p = from.polygonPoints[i];
+      const Vec3& q = from.polygonPoints[i + 1 < end ? i + 1 : begin];
+      const double sp = plane.normal.dot(p) - plane.offset;
+      const double sq = plane.normal.dot(q) - plane.offset;
+      if (crosses(sp, sq, tolerance)) to.points.push_back(crossing(p, q, sp, sq));
+    }
+    begin = end;
+  }
+  std::sort(to.points.begin() + kept, to.points.end(), lexicographicLess);
+  std::inplace_merge(to.points.begin(), to.points.begin() + kept, to.points.end(),
+                     lexicographicLess);
+  to.points.erase(std::unique(to.points.begin(), to.points.end()), to.points.end());
 }
 
 // The corners of the child cell `walls` (the parent's walls and the cut, last) that lie in the
@@ -159,15 +204,13 @@ std::vector<Vec3> thinOut(const std::vector<Vec3>& points, double snap) {
 // some inputs with points a rounding error apart (clip points next to vertices); those are
 // retried without points closer than `snap` to another, which moves the hull by at most `snap`.
 bool buildHull(Cell& cell, double snap) {
-  std::vector<Vec3> points = cell.polygonPoints;
+  std::vector<Vec3> points = cell.points;
   points.insert(points.end(), cell.corners.begin(), cell.corners.end());
-  const auto lexicographic = [](const Vec3& a, const Vec3& b) {
-    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
-  };
-  std::sort(points.begin(), points.end(), lexicographic);
-  points.erase(std::unique(points.begin(), points.end()), points.end());
   for (int attempt = 0; attempt < 2; ++attempt) {
-    if (attempt == 1) points = thinOut(points, snap);
+    if (attempt == 1) {
+      sortPoints(points);
+      points = thinOut(points, snap);
+    }
     if (points.size() < 4) return false;
     try {
       cell.hull = convexHull(points, "piece");
@@ -197,8 +240,8 @@ void measureConcavity(Cell& cell, const Context& context, std::uint64_t salt) {
 // The part of `parent` on the side n.x <= d of `cut`, or nothing when it has no volume.
 std::optional<Cell> childCell(const Cell& parent, const HullPlane& cut, const Context& context) {
   Cell child;
-  clipPolygons(parent, cut, context.tolerance, child);
-  if (child.polygonEnds.empty()) return std::nullopt;
+  clipPoints(parent, cut, context.tolerance, child);
+  if (child.points.empty()) return std::nullopt;
   child.walls = parent.walls;
   child.walls.push_back(cut);
   child.corners = childCorners(parent.corners, child.walls, context.solid, context.tolerance);
@@ -277,15 +320,19 @@ std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& 
       best = i;
     }
   }
-  return std::pair{std::move(candidates[best].below), std::move(candidates[best].above)};
+  Candidate& chosen = candidates[best];
+  clipPolygons(cell, chosen.below.walls.back(), context.tolerance, chosen.below);
+  clipPolygons(cell, chosen.above.walls.back(), context.tolerance, chosen.above);
+  return std::pair{std::move(chosen.below), std::move(chosen.above)};
 }
 
 // The hull of two pieces together (pieces' vertices only: cells are not needed after splitting).
 std::optional<Cell> mergedCell(const Cell& a, const Cell& b, double snap) {
   Cell merged;
-  merged.polygonPoints = a.hull.mesh.vertices;
-  merged.polygonPoints.insert(merged.polygonPoints.end(), b.hull.mesh.vertices.begin(),
-                              b.hull.mesh.vertices.end());
+  merged.points = a.hull.mesh.vertices;
+  merged.points.insert(merged.points.end(), b.hull.mesh.vertices.begin(),
+                       b.hull.mesh.vertices.end());
+  sortPoints(merged.points);
   if (!buildHull(merged, snap)) return std::nullopt;
   return merged;
 }
@@ -546,6 +593,8 @@ Decomposition decomposeBounding(const TriangleMesh& mesh, const DecompositionOpt
     for (const std::uint32_t v : t) root.polygonPoints.push_back(bound.vertices[v]);
     root.polygonEnds.push_back(static_cast<std::uint32_t>(root.polygonPoints.size()));
   }
+  root.points = root.polygonPoints;
+  sortPoints(root.points);
   const MeshAnalysis boundAnalysis = analyzeMesh(bound);
   const Vec3 margin = Vec3::Constant(0.01 * stats.diagonal);
   const Vec3 lo = boundAnalysis.boxMin - margin, hi = boundAnalysis.boxMax + margin;
