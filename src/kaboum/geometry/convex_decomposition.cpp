@@ -38,7 +38,7 @@ constexpr std::size_t kSplitBeyondLimit = 2;  // split up to this many times the
 // more cuts through it than the piece limit allows).
 constexpr int kMaxStalls = 3;
 constexpr double kStallRatio = 0.9;
-constexpr std::size_t kShortlist = 1;  // cuts whose children's concavity is measured
+constexpr std::size_t kShortlist = 1;  // least-volume cuts whose children's concavity is measured
 
 double meshVolume(const TriangleMesh& mesh) {
   double sixVolume = 0.0;
@@ -271,8 +271,9 @@ std::vector<Vec3> cutAxes(const Cell& cell) {
 
 // The split of `cell` whose children's larger concavity is smallest, among the kShortlist
 // candidate cuts with the smallest total hull volume (the hull volume beyond the solid's is what
-// concavity grows with, and it is cheap to compare); nothing when no candidate cuts it in two.
-// The children come with their concavity measured.
+// concavity grows with, and it is cheap to compare) and the cuts through the worst concavity
+// sample; nothing when no candidate cuts it in two. The children come with their concavity
+// measured and their polygons clipped. Candidates are axis-parallel and principal-axis planes.
 std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& context,
                                                std::uint64_t& measured) {
   struct Candidate {
