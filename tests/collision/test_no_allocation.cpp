@@ -1,0 +1,74 @@
+// Hot paths allocate nothing per call: body-body, robot-scene and self-collision checks, the
+// predicates, and swept-volume queries once their buffers have grown.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include "collision_test_support.hpp"
+#include "kaboum/collision/predicates.hpp"
+#include "kaboum/collision/scene_generator.hpp"
+#include "kaboum/collision/swept.hpp"
+#include "kaboum/kinematics/urdf_loader.hpp"
+
+// The replacements below pair malloc/free themselves; GCC cannot see that through inlining.
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+
+namespace {
+std::atomic<long> allocations{0};
+}  // namespace
+
+void* operator new(std::size_t size) {
+  ++allocations;
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+  std::free(p);
+}
+
+namespace kaboum::collision {
+namespace {
+
+template <typename F>
+long allocationsDuring(F&& call) {
+  const long before = allocations.load();
+  call();
+  return allocations.load() - before;
+}
+
+TEST(NoAllocation, CollisionHotPaths) {
+  RobotCollisionModel robot(loadUrdf(test::kKr5));
+  const CollisionScene scene =
+      randomObstacleScene(Aabb{Vec3(-0.8, -1.2, -0.8), Vec3(0.8, 0.4, 0.8)}, 50, 12, 0.04, 3);
+  std::vector<Pose> poses(robot.model().links().size());
+  const std::vector<double> qa{0.1, 0.2, -0.3, 0.4, 0.5, 0.6}, qb{0.9, -0.2, 0.3, 1.4, -0.5, 0.1};
+  robot.model().linkPoses(qa, poses);
+  const ConvexContainer container(test::boxCorners(Vec3::Constant(-1), Vec3::Constant(1)));
+  RobotSweep sweep(robot);
+  EXPECT_GT(allocationsDuring([&] { sweep.sweep(qa, qb, 0.001); }), 0);  // counter works
+  bool any = false;
+  EXPECT_EQ(
+      allocationsDuring([&] { any |= robot.firstSceneCollision(poses, scene, 0).has_value(); }), 0);
+  EXPECT_EQ(allocationsDuring([&] { any |= robot.selfCollides(poses, 0); }), 0);
+  EXPECT_EQ(allocationsDuring([&] {
+              any |= bodiesCollide(scene.body(0), scene.pose(0), scene.body(1), scene.pose(1), 0);
+            }),
+            0);
+  EXPECT_EQ(allocationsDuring([&] {
+              any |= isInside(scene.body(0), scene.pose(0), container, Pose::Identity());
+            }),
+            0);
+  EXPECT_EQ(allocationsDuring([&] { any |= isOnSupportSurface(scene, 0, 0.01, 0.001); }), 0);
+  EXPECT_EQ(allocationsDuring(
+                [&] { any |= sweep.firstSceneCollision(qa, qb, scene, 0, 0.001).has_value(); }),
+            0);
+  (void)any;
+}
+
+}  // namespace
+}  // namespace kaboum::collision
