@@ -1,0 +1,136 @@
+// Convex polytopes for the narrow phase (thesis §4.1, §4.4: every convex piece of a bounding
+// convex decomposition): vertices with their edge graph for hill-climbing support mapping, and
+// rigid transforms applied to the query direction, never to the vertices.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "kaboum/collision/support_mapping.hpp"
+#include "kaboum/geometry/convex_hull.hpp"
+
+namespace kaboum::collision {
+
+// The convex hull of a point set in its own (local) frame. Satisfies SupportMapping.
+class ConvexPolytope {
+ public:
+  // Index of the vertex the last support query returned; the next query starts climbing there.
+  using Hint = std::uint32_t;
+
+  // Up to this many vertices, support() scans all of them (measured faster than climbing,
+  // see docs/collision.md); above, it climbs the edge graph.
+  static constexpr std::size_t kBruteForceMaxVertices = 16;
+
+  // The hull of `points` (interior and duplicated points dropped). Throws InputError (naming
+  // `what`) for fewer than four points, non-finite points or points without volume.
+  explicit ConvexPolytope(std::span<const Vec3> points, const std::string& what = "points");
+  // A hull already computed by convexHull(): its vertices, and its triangle edges as the graph.
+  explicit ConvexPolytope(const ConvexHull& hull);
+
+  // A vertex maximising direction.x; ties go to the first one found.
+  [[nodiscard]] Vec3 support(const Vec3& direction, Hint& hint) const {
+    return vertices_[supportIndex(direction, hint)];
+  }
+  // Index of that vertex (also stored in `hint`).
+  [[nodiscard]] std::uint32_t supportIndex(const Vec3& direction, Hint& hint) const;
+  // The mean of the vertices (an interior point).
+  [[nodiscard]] Vec3 center() const { return center_; }
+
+  [[nodiscard]] const std::vector<Vec3>& vertices() const { return vertices_; }
+  [[nodiscard]] std::size_t vertexCount() const { return vertices_.size(); }
+  // Vertices sharing a hull edge with vertex `index`.
+  [[nodiscard]] std::span<const std::uint32_t> neighbors(std::uint32_t index) const {
+    return {neighbors_.data() + neighborBegin_[index],
+            neighbors_.data() + neighborBegin_[index + 1]};
+  }
+
+  // Axis-aligned box and a bounding sphere in the local frame, for cheap rejection.
+  [[nodiscard]] const Eigen::AlignedBox3d& localBox() const { return box_; }
+  [[nodiscard]] const Vec3& boundingSphereCenter() const { return sphereCenter_; }
+  [[nodiscard]] double boundingSphereRadius() const { return sphereRadius_; }
+
+ private:
+  std::uint32_t climb(const Vec3& direction, std::uint32_t start) const;
+  std::uint32_t scan(const Vec3& direction) const;
+
+  std::vector<Vec3> vertices_;
+  // Compressed adjacency: neighbors of vertex i are neighbors_[neighborBegin_[i] ..
+  // neighborBegin_[i+1]).
+  std::vector<std::uint32_t> neighborBegin_;
+  std::vector<std::uint32_t> neighbors_;
+  Vec3 center_;
+  Eigen::AlignedBox3d box_;
+  Vec3 sphereCenter_;
+  double sphereRadius_ = 0.0;
+};
+
+// A polytope placed by a rigid transform (local → world). The direction is rotated into the
+// local frame and the support vertex back out, so no vertex is copied. Holds a reference: the
+// polytope must outlive it. Satisfies SupportMapping.
+inline std::uint32_t ConvexPolytope::supportIndex(const Vec3& direction, Hint& hint) const {
+  hint = vertices_.size() <= kBruteForceMaxVertices
+             ? scan(direction)
+             : climb(direction, hint < vertices_.size() ? hint : 0);
+  return hint;
+}
+
+inline std::uint32_t ConvexPolytope::scan(const Vec3& direction) const {
+  std::uint32_t best = 0;
+  double bestDot = direction.dot(vertices_[0]);
+  for (std::uint32_t i = 1; i < vertices_.size(); ++i) {
+    const double d = direction.dot(vertices_[i]);
+    if (d > bestDot) {
+      bestDot = d;
+      best = i;
+    }
+  }
+  return best;
+}
+
+// Steepest ascent on the edge graph: on a convex polytope a vertex no neighbor improves on is a
+// global maximum.
+inline std::uint32_t ConvexPolytope::climb(const Vec3& direction, std::uint32_t start) const {
+  std::uint32_t current = start;
+  double currentDot = direction.dot(vertices_[current]);
+  for (;;) {
+    const std::uint32_t from = current;
+    for (std::uint32_t i = neighborBegin_[from]; i < neighborBegin_[from + 1]; ++i) {
+      const double d = direction.dot(vertices_[neighbors_[i]]);
+      if (d > currentDot) {
+        currentDot = d;
+        current = neighbors_[i];
+      }
+    }
+    if (current == from) return current;
+  }
+}
+
+class TransformedSupport {
+ public:
+  using Hint = ConvexPolytope::Hint;
+
+  TransformedSupport(const ConvexPolytope& polytope, const Eigen::Isometry3d& pose)
+      : polytope_(&polytope), rotation_(pose.linear()), translation_(pose.translation()) {}
+
+  [[nodiscard]] Vec3 support(const Vec3& direction, Hint& hint) const {
+    return rotation_ * polytope_->support(rotation_.transpose() * direction, hint) + translation_;
+  }
+  [[nodiscard]] Vec3 center() const { return rotation_ * polytope_->center() + translation_; }
+
+  [[nodiscard]] const ConvexPolytope& polytope() const { return *polytope_; }
+  [[nodiscard]] const Eigen::Matrix3d& rotation() const { return rotation_; }
+  [[nodiscard]] const Vec3& translation() const { return translation_; }
+
+ private:
+  const ConvexPolytope* polytope_;
+  Eigen::Matrix3d rotation_;
+  Vec3 translation_;
+};
+
+static_assert(SupportMapping<ConvexPolytope>);
+static_assert(SupportMapping<TransformedSupport>);
+
+}  // namespace kaboum::collision

@@ -1,0 +1,126 @@
+// ConvexPolytope and TransformedSupport: the support mapping every narrow-phase query relies on.
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <random>
+
+#include "kaboum/collision/convex_polytope.hpp"
+#include "kaboum/collision/polytope_pairs.hpp"
+#include "kaboum/core/error.hpp"
+#include "kaboum/io/mesh_io.hpp"
+
+namespace kaboum::collision {
+namespace {
+
+double maxDot(const std::vector<Vec3>& points, const Vec3& direction) {
+  double best = -std::numeric_limits<double>::infinity();
+  for (const Vec3& p : points) best = std::max(best, direction.dot(p));
+  return best;
+}
+
+Vec3 randomDirection(std::mt19937_64& rng) {
+  std::normal_distribution<double> normal;
+  return {normal(rng), normal(rng), normal(rng)};
+}
+
+// Support by scanning or by climbing from any start vertex reaches the maximum over all points.
+void expectExactSupport(const ConvexPolytope& polytope, const std::vector<Vec3>& points,
+                        std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  for (int i = 0; i < 2000; ++i) {
+    const Vec3 d = randomDirection(rng);
+    ConvexPolytope::Hint hint = static_cast<ConvexPolytope::Hint>(rng() % polytope.vertexCount());
+    const Vec3 s = polytope.support(d, hint);
+    ASSERT_NEAR(d.dot(s), maxDot(points, d), 1e-12 * (1 + d.norm()));
+    EXPECT_EQ(polytope.vertices()[hint], s);
+  }
+}
+
+TEST(ConvexPolytope, SupportIsTheMaximumOverAllPointsForEverySize) {
+  for (const int n : {4, 8, 16, 17, 32, 64, 256}) {
+    const auto pair = randomPolytopePairs(1, n, 100 + static_cast<std::uint64_t>(n)).front();
+    const ConvexPolytope polytope(pair.localA);
+    EXPECT_EQ(polytope.vertexCount(), static_cast<std::size_t>(n));
+    expectExactSupport(polytope, pair.localA, static_cast<std::uint64_t>(n));
+  }
+}
+
+TEST(ConvexPolytope, InteriorAndDuplicatedPointsAreDropped) {
+  std::vector<Vec3> points;
+  for (int i = 0; i < 8; ++i) points.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+  points.insert(points.end(), points.begin(), points.end());  // every corner twice
+  points.emplace_back(0.5, 0.5, 0.5);
+  points.emplace_back(0.5, 0.5, 1.0);  // on a face
+  const ConvexPolytope cube(points);
+  EXPECT_EQ(cube.vertexCount(), 8U);
+  EXPECT_TRUE(cube.center().isApprox(Vec3(0.5, 0.5, 0.5)));
+  expectExactSupport(cube, points, 1);
+}
+
+TEST(ConvexPolytope, EdgeGraphIsSymmetricAndConnectsEveryVertex) {
+  const auto pair = randomPolytopePairs(1, 40, 7).front();
+  const ConvexPolytope polytope(pair.localA);
+  for (std::uint32_t i = 0; i < polytope.vertexCount(); ++i) {
+    const auto around = polytope.neighbors(i);
+    EXPECT_GE(around.size(), 3U);
+    for (const std::uint32_t j : around) {
+      EXPECT_NE(i, j);
+      const auto back = polytope.neighbors(j);
+      EXPECT_NE(std::find(back.begin(), back.end(), i), back.end());
+    }
+  }
+}
+
+TEST(ConvexPolytope, BoundingBoxAndSphereContainEveryVertex) {
+  const auto pair = randomPolytopePairs(1, 64, 3).front();
+  const ConvexPolytope polytope(pair.localA);
+  for (const Vec3& v : pair.localA) {
+    EXPECT_TRUE(polytope.localBox().contains(v));
+    EXPECT_LE((v - polytope.boundingSphereCenter()).norm(),
+              polytope.boundingSphereRadius() + 1e-12);
+  }
+  EXPECT_LE(polytope.boundingSphereRadius(), 0.5 * polytope.localBox().diagonal().norm() + 1e-12);
+}
+
+TEST(ConvexPolytope, TransformedSupportMatchesTransformedVertices) {
+  for (const int n : {8, 64}) {
+    const auto pair = randomPolytopePairs(1, n, 11).front();
+    const ConvexPolytope polytope(pair.localA);
+    const TransformedSupport placed(polytope, pair.poseA);
+    const std::vector<Vec3> world = pair.worldA();
+    std::mt19937_64 rng(5);
+    TransformedSupport::Hint hint{};
+    for (int i = 0; i < 1000; ++i) {
+      const Vec3 d = randomDirection(rng);
+      ASSERT_NEAR(d.dot(placed.support(d, hint)), maxDot(world, d), 1e-12 * (1 + d.norm()));
+    }
+    EXPECT_TRUE(placed.center().isApprox(pair.poseA * polytope.center()));
+  }
+}
+
+TEST(ConvexPolytope, HullsOfRealRobotLinksSupportExactly) {
+  for (const char* name : {"kr5-wrist.stl", "kr5-base-link.stl", "wam2.stl"}) {
+    const TriangleMesh mesh = readMesh(std::string(KABOUM_DATA_DIR) + "/meshes/" + name);
+    const ConvexPolytope polytope(mesh.vertices, name);
+    EXPECT_GT(polytope.vertexCount(), 16U) << name;  // exercises hill climbing
+    expectExactSupport(polytope, mesh.vertices, 3);
+  }
+}
+
+TEST(ConvexPolytope, RejectsPointSetsWithoutVolume) {
+  const std::vector<Vec3> three = {Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY()};
+  EXPECT_THROW(ConvexPolytope(three, "three"), InputError);
+  const std::vector<Vec3> flat = {Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), Vec3(1, 1, 0)};
+  EXPECT_THROW(ConvexPolytope(flat, "flat"), InputError);
+  std::vector<Vec3> nan = {Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
+  nan[2].x() = std::numeric_limits<double>::quiet_NaN();
+  try {
+    ConvexPolytope polytope(nan, "piece 3");
+    FAIL() << "no error";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("piece 3"), std::string::npos) << error.what();
+  }
+}
+
+}  // namespace
+}  // namespace kaboum::collision
