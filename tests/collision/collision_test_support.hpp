@@ -1,5 +1,5 @@
-// Shared helpers of the collision tests: random convex bodies and poses, and an exact distance
-// between convex point sets (the hull of their Minkowski difference) as the reference.
+// Shared helpers of the collision tests: random convex bodies and poses, and the exact distance
+// between posed bodies (minkowskiReference over all piece pairs) as the reference.
 #pragma once
 
 #include <algorithm>
@@ -11,8 +11,7 @@
 #include <vector>
 
 #include "kaboum/collision/body.hpp"
-#include "kaboum/geometry/convex_hull.hpp"
-#include "kaboum/geometry/triangle_bvh.hpp"
+#include "kaboum/collision/minkowski_reference.hpp"
 #include "kaboum/kinematics/random_configuration.hpp"
 
 namespace kaboum::collision::test {
@@ -59,25 +58,6 @@ inline BodyPtr boxBody(const Vec3& lo, const Vec3& hi) {
   return std::make_shared<const CollisionBody>(sets, "box");
 }
 
-// Exact distance between conv(a) and conv(b) (0 when they overlap), from the hull of the
-// Minkowski difference a - b.
-inline double exactDistance(std::span<const Vec3> a, std::span<const Vec3> b) {
-  std::vector<Vec3> difference;
-  for (const Vec3& p : a) {
-    for (const Vec3& q : b) difference.push_back(p - q);
-  }
-  const ConvexHull hull = convexHull(difference, "Minkowski difference");
-  bool inside = true;
-  for (const HullPlane& plane : hull.planes) inside &= plane.offset >= 0;
-  if (inside) return 0;
-  double best = std::numeric_limits<double>::infinity();
-  const auto& v = hull.mesh.vertices;
-  for (const Triangle& t : hull.mesh.triangles) {
-    best = std::min(best, closestPointOnTriangle(Vec3::Zero(), v[t[0]], v[t[1]], v[t[2]]).norm());
-  }
-  return best;
-}
-
 // Exact distance between two posed bodies: the smallest over all piece pairs.
 inline double exactDistance(const CollisionBody& a, const Pose& poseA, const CollisionBody& b,
                             const Pose& poseB) {
@@ -88,7 +68,7 @@ inline double exactDistance(const CollisionBody& a, const Pose& poseA, const Col
     for (std::size_t j = 0; j < b.pieceCount(); ++j) {
       std::vector<Vec3> pb;
       for (const Vec3& v : b.piece(j).vertices()) pb.push_back(poseB * v);
-      best = std::min(best, exactDistance(pa, pb));
+      best = std::min(best, std::max(0.0, minkowskiReference(pa, pb).signedDistance));
     }
   }
   return best;
