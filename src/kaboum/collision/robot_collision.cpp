@@ -102,7 +102,7 @@ RobotCollisionModel::RobotCollisionModel(RobotModel model) : model_(std::move(mo
     if (pieces.empty()) continue;
     partOfLink[l] = static_cast<int>(parts_.size());
     parts_.push_back({std::make_shared<const CollisionBody>(pieces, "link " + links[l].name),
-                      static_cast<int>(l), Pose::Identity(), true});
+                      static_cast<int>(l), Pose::Identity(), true, false});
   }
   filter_.resize(parts_.size());
   for (const Part& part : parts_) {
@@ -135,7 +135,8 @@ std::size_t RobotCollisionModel::attach(BodyPtr object, int link, const Pose& in
   if (link < 0 || static_cast<std::size_t>(link) >= model_.links().size()) {
     throw std::out_of_range("attach: no link " + std::to_string(link));
   }
-  parts_.push_back({std::move(object), link, inLink, true});
+  parts_.push_back(
+      {std::move(object), link, inLink, true, inLink.matrix() != Pose::Identity().matrix()});
   const std::size_t index = parts_.size() - 1;
   filter_.resize(parts_.size());
   for (std::size_t i = 0; i < index; ++i) {

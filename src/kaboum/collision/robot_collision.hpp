@@ -36,6 +36,7 @@ class RobotCollisionModel {
     int link = -1;                   // the link whose pose moves it
     Pose inLink = Pose::Identity();  // body frame in the link frame
     bool active = true;              // detached objects stay as inactive parts
+    bool offset = false;             // inLink is not the identity
   };
 
   [[nodiscard]] const RobotModel& model() const { return model_; }
@@ -57,12 +58,19 @@ class RobotCollisionModel {
   void detach(std::size_t part) { parts_.at(part).active = false; }
 
   // Pose of the model root in the world (identity by default); every query applies it.
-  void setBasePose(const Pose& base) { base_ = base; }
+  void setBasePose(const Pose& base) {
+    base_ = base;
+    baseIsIdentity_ = base.matrix() == Pose::Identity().matrix();
+  }
   [[nodiscard]] const Pose& basePose() const { return base_; }
 
   // World pose of a part given the link poses from RobotModel::linkPoses().
   [[nodiscard]] Pose partPose(std::size_t i, std::span<const Pose> linkPoses) const {
-    return base_ * linkPoses[static_cast<std::size_t>(parts_[i].link)] * parts_[i].inLink;
+    const Part& part = parts_[i];
+    Pose pose = linkPoses[static_cast<std::size_t>(part.link)];
+    if (part.offset) pose = pose * part.inLink;
+    if (!baseIsIdentity_) pose = base_ * pose;
+    return pose;
   }
 
   // Whether two unfiltered active parts come within `margin`. Allocates nothing.
@@ -75,6 +83,7 @@ class RobotCollisionModel {
  private:
   RobotModel model_;
   Pose base_ = Pose::Identity();
+  bool baseIsIdentity_ = true;
   std::vector<Part> parts_;
   CollisionFilter filter_;
 };

@@ -42,7 +42,8 @@ void CollisionScene::rebuild() {
 std::optional<std::size_t> CollisionScene::firstCollision(const CollisionBody& body,
                                                           const Pose& pose, double margin,
                                                           std::optional<std::size_t> ignore) const {
-  if (!tree_.anyOverlapping(transformedAabb(body.bounds().box, pose).inflated(margin))) {
+  if (body.pieceCount() > 1 &&
+      !tree_.anyOverlapping(transformedAabb(body.bounds().box, pose).inflated(margin))) {
     return std::nullopt;
   }
   for (std::size_t p = 0; p < body.pieceCount(); ++p) {
