@@ -32,10 +32,20 @@ ConvexPolytope::ConvexPolytope(const ConvexHull& hull) : vertices_(hull.mesh.ver
   center_ = Vec3::Zero();
   box_.setEmpty();
   for (const Vec3& v : vertices_) {
+    coordinates_.insert(coordinates_.end(), {v.x(), v.y(), v.z()});
     center_ += v;
     box_.extend(v);
   }
   center_ /= static_cast<double>(n);
+  for (int axis = 0; axis < 3; ++axis) {
+    for (const double sign : {-1.0, 1.0}) seeds_.push_back(scan(sign * Vec3::Unit(axis)));
+  }
+  for (int corner = 0; corner < 8; ++corner) {
+    seeds_.push_back(
+        scan(Vec3(corner & 1 ? 1.0 : -1.0, corner & 2 ? 1.0 : -1.0, corner & 4 ? 1.0 : -1.0)));
+  }
+  std::sort(seeds_.begin(), seeds_.end());
+  seeds_.erase(std::unique(seeds_.begin(), seeds_.end()), seeds_.end());
   sphereCenter_ = box_.center();
   for (const Vec3& v : vertices_) {
     sphereRadius_ = std::max(sphereRadius_, (v - sphereCenter_).norm());

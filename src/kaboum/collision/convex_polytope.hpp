@@ -17,12 +17,16 @@ namespace kaboum::collision {
 // The convex hull of a point set in its own (local) frame. Satisfies SupportMapping.
 class ConvexPolytope {
  public:
-  // Index of the vertex the last support query returned; the next query starts climbing there.
-  using Hint = std::uint32_t;
+  static constexpr std::uint32_t kNoVertex = UINT32_MAX;
+  // The vertex the last support query returned; the next query starts climbing there. A cold
+  // (default) hint starts from the best of the vertices extreme along 14 fixed directions.
+  struct Hint {
+    std::uint32_t vertex = kNoVertex;
+  };
 
   // Up to this many vertices, support() scans all of them (measured faster than climbing,
   // see docs/collision.md); above, it climbs the edge graph.
-  static constexpr std::size_t kBruteForceMaxVertices = 16;
+  static constexpr std::size_t kBruteForceMaxVertices = 32;
 
   // The hull of `points` (interior and duplicated points dropped). Throws InputError (naming
   // `what`) for fewer than four points, non-finite points or points without volume.
@@ -54,13 +58,18 @@ class ConvexPolytope {
 
  private:
   std::uint32_t climb(const Vec3& direction, std::uint32_t start) const;
+  std::uint32_t bestSeed(const Vec3& direction) const;
   std::uint32_t scan(const Vec3& direction) const;
 
   std::vector<Vec3> vertices_;
+  // The same coordinates packed x y z x y z ... for the support loops.
+  std::vector<double> coordinates_;
   // Compressed adjacency: neighbors of vertex i are neighbors_[neighborBegin_[i] ..
   // neighborBegin_[i+1]).
   std::vector<std::uint32_t> neighborBegin_;
   std::vector<std::uint32_t> neighbors_;
+  // Distinct vertices extreme along ±x, ±y, ±z and the 8 diagonals: cold climbing starts.
+  std::vector<std::uint32_t> seeds_;
   Vec3 center_;
   Eigen::AlignedBox3d box_;
   Vec3 sphereCenter_;
@@ -71,17 +80,38 @@ class ConvexPolytope {
 // local frame and the support vertex back out, so no vertex is copied. Holds a reference: the
 // polytope must outlive it. Satisfies SupportMapping.
 inline std::uint32_t ConvexPolytope::supportIndex(const Vec3& direction, Hint& hint) const {
-  hint = vertices_.size() <= kBruteForceMaxVertices
-             ? scan(direction)
-             : climb(direction, hint < vertices_.size() ? hint : 0);
-  return hint;
+  if (vertices_.size() <= kBruteForceMaxVertices) {
+    hint.vertex = scan(direction);
+  } else {
+    hint.vertex =
+        climb(direction, hint.vertex < vertices_.size() ? hint.vertex : bestSeed(direction));
+  }
+  return hint.vertex;
+}
+
+inline std::uint32_t ConvexPolytope::bestSeed(const Vec3& direction) const {
+  std::uint32_t best = seeds_.front();
+  double bestDot = direction.dot(vertices_[best]);
+  for (const std::uint32_t seed : seeds_) {
+    const double d = direction.dot(vertices_[seed]);
+    if (d > bestDot) {
+      bestDot = d;
+      best = seed;
+    }
+  }
+  return best;
 }
 
 inline std::uint32_t ConvexPolytope::scan(const Vec3& direction) const {
+  const double dx = direction.x();
+  const double dy = direction.y();
+  const double dz = direction.z();
+  const double* p = coordinates_.data();
   std::uint32_t best = 0;
-  double bestDot = direction.dot(vertices_[0]);
-  for (std::uint32_t i = 1; i < vertices_.size(); ++i) {
-    const double d = direction.dot(vertices_[i]);
+  double bestDot = dx * p[0] + dy * p[1] + dz * p[2];
+  const auto n = static_cast<std::uint32_t>(vertices_.size());
+  for (std::uint32_t i = 1; i < n; ++i) {
+    const double d = dx * p[3 * i] + dy * p[3 * i + 1] + dz * p[3 * i + 2];
     if (d > bestDot) {
       bestDot = d;
       best = i;
@@ -93,12 +123,19 @@ inline std::uint32_t ConvexPolytope::scan(const Vec3& direction) const {
 // Steepest ascent on the edge graph: on a convex polytope a vertex no neighbor improves on is a
 // global maximum.
 inline std::uint32_t ConvexPolytope::climb(const Vec3& direction, std::uint32_t start) const {
+  const double dx = direction.x();
+  const double dy = direction.y();
+  const double dz = direction.z();
+  const double* p = coordinates_.data();
+  const auto dot = [&](std::uint32_t v) {
+    return dx * p[3 * v] + dy * p[3 * v + 1] + dz * p[3 * v + 2];
+  };
   std::uint32_t current = start;
-  double currentDot = direction.dot(vertices_[current]);
+  double currentDot = dot(current);
   for (;;) {
     const std::uint32_t from = current;
     for (std::uint32_t i = neighborBegin_[from]; i < neighborBegin_[from + 1]; ++i) {
-      const double d = direction.dot(vertices_[neighbors_[i]]);
+      const double d = dot(neighbors_[i]);
       if (d > currentDot) {
         currentDot = d;
         current = neighbors_[i];
@@ -116,7 +153,16 @@ class TransformedSupport {
       : polytope_(&polytope), rotation_(pose.linear()), translation_(pose.translation()) {}
 
   [[nodiscard]] Vec3 support(const Vec3& direction, Hint& hint) const {
-    return rotation_ * polytope_->support(rotation_.transpose() * direction, hint) + translation_;
+    // Written out: Eigen's expression templates are not always inlined at -O2 on this hot path.
+    const Eigen::Matrix3d& r = rotation_;
+    const Vec3& d = direction;
+    const Vec3 local(r(0, 0) * d.x() + r(1, 0) * d.y() + r(2, 0) * d.z(),
+                     r(0, 1) * d.x() + r(1, 1) * d.y() + r(2, 1) * d.z(),
+                     r(0, 2) * d.x() + r(1, 2) * d.y() + r(2, 2) * d.z());
+    const Vec3& p = polytope_->support(local, hint);
+    return {r(0, 0) * p.x() + r(0, 1) * p.y() + r(0, 2) * p.z() + translation_.x(),
+            r(1, 0) * p.x() + r(1, 1) * p.y() + r(1, 2) * p.z() + translation_.y(),
+            r(2, 0) * p.x() + r(2, 1) * p.y() + r(2, 2) * p.z() + translation_.z()};
   }
   [[nodiscard]] Vec3 center() const { return rotation_ * polytope_->center() + translation_; }
 

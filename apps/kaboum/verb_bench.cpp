@@ -1,0 +1,403 @@
+// `kaboum bench`: side-by-side benchmarks against the reference libraries on identical queries.
+// `bench collision` runs its sections (the convex pair narrow phase here; more may be added to
+// kCollisionSections) and prints ns per query, ratios and wrong answers vs an exact reference.
+#include <BulletCollision/NarrowPhaseCollision/btGjkEpa2.h>
+#include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
+#include <BulletCollision/NarrowPhaseCollision/btGjkPairDetector.h>
+#include <BulletCollision/NarrowPhaseCollision/btPointCollector.h>
+#include <BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h>
+#include <btBulletCollisionCommon.h>
+#include <ccd/ccd.h>
+#include <fcl/geometry/shape/convex.h>
+#include <fcl/narrowphase/detail/gjk_solver_indep.h>
+#include <fcl/narrowphase/detail/gjk_solver_libccd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "kaboum/collision/convex_polytope.hpp"
+#include "kaboum/collision/gjk.hpp"
+#include "kaboum/collision/minkowski_reference.hpp"
+#include "kaboum/collision/polytope_pairs.hpp"
+#include "kaboum/core/error.hpp"
+#include "verb.hpp"
+
+namespace kaboum::cli {
+namespace {
+
+using collision::PolytopePair;
+
+struct CollisionBenchOptions {
+  std::size_t pairs = 2000;
+  std::vector<int> vertexCounts = {8, 16, 32, 64};
+  int runs = 5;
+  std::uint64_t seed = 1;
+  std::vector<std::string> sections;
+  bool json = false;
+  bool quiet = false;
+};
+
+// Median over `runs` timed sweeps of `query(i)` for every pair i, in ns per query.
+template <class Query>
+double medianNanoseconds(std::size_t count, int runs, Query&& query) {
+  std::vector<double> perQuery;
+  volatile std::size_t sink = 0;
+  for (int run = 0; run < runs; ++run) {
+    const auto start = std::chrono::steady_clock::now();
+    std::size_t hits = 0;
+    for (std::size_t i = 0; i < count; ++i) hits += query(i) ? 1 : 0;
+    const auto stop = std::chrono::steady_clock::now();
+    sink = sink + hits;
+    perQuery.push_back(std::chrono::duration<double, std::nano>(stop - start).count() /
+                       static_cast<double>(count));
+  }
+  std::nth_element(perQuery.begin(), perQuery.begin() + runs / 2, perQuery.end());
+  return perQuery[static_cast<std::size_t>(runs / 2)];
+}
+
+// One library's answers on the workload: speed and wrong answers against the reference.
+struct MethodReport {
+  std::string name;
+  double booleanNs = 0.0;
+  std::optional<double> distanceNs;
+  int missedOverlaps = 0;      // "free" although the true distance is <= 0
+  double deepestMissed = 0.0;  // largest penetration depth among them
+  int falseAlarms = 0;         // "colliding" although the true distance is > 1e-6
+  int overestimates = 0;       // distance above the true distance by more than 1e-9
+  double largestOverestimate = 0.0;
+};
+
+// Correctness tolerances of the counts (units of the unit-size workload).
+constexpr double kFalseAlarmDistance = 1e-6;
+constexpr double kOverestimateTolerance = 1e-9;
+
+template <class Intersects, class Distance>
+MethodReport measure(const std::string& name, const std::vector<double>& truth, int runs,
+                     Intersects&& intersects, Distance&& distance) {
+  MethodReport report;
+  report.name = name;
+  const std::size_t count = truth.size();
+  for (std::size_t i = 0; i < count; ++i) {
+    const bool hit = intersects(i);
+    if (!hit && truth[i] <= 0.0) {
+      ++report.missedOverlaps;
+      report.deepestMissed = std::max(report.deepestMissed, -truth[i]);
+    }
+    if (hit && truth[i] > kFalseAlarmDistance) ++report.falseAlarms;
+  }
+  report.booleanNs = medianNanoseconds(count, runs, intersects);
+  if constexpr (!std::is_same_v<std::decay_t<Distance>, std::nullptr_t>) {
+    for (std::size_t i = 0; i < count; ++i) {
+      const double excess = distance(i) - std::max(truth[i], 0.0);
+      if (excess > kOverestimateTolerance) {
+        ++report.overestimates;
+        report.largestOverestimate = std::max(report.largestOverestimate, excess);
+      }
+    }
+    report.distanceNs =
+        medianNanoseconds(count, runs, [&](std::size_t i) { return distance(i) > 0.0; });
+  }
+  return report;
+}
+
+// libccd's view of a placed polytope: brute-force support over the local vertices.
+struct CcdPolytope {
+  const std::vector<Vec3>* local;
+  Eigen::Matrix3d rotation;
+  Vec3 translation;
+  Vec3 center;
+};
+
+void ccdSupport(const void* object, const ccd_vec3_t* direction, ccd_vec3_t* out) {
+  const auto& shape = *static_cast<const CcdPolytope*>(object);
+  const Vec3 d =
+      shape.rotation.transpose() * Vec3(direction->v[0], direction->v[1], direction->v[2]);
+  const Vec3* best = &shape.local->front();
+  double bestDot = d.dot(*best);
+  for (const Vec3& p : *shape.local) {
+    if (d.dot(p) > bestDot) {
+      bestDot = d.dot(p);
+      best = &p;
+    }
+  }
+  const Vec3 world = shape.rotation * *best + shape.translation;
+  ccdVec3Set(out, world.x(), world.y(), world.z());
+}
+
+void ccdCenter(const void* object, ccd_vec3_t* out) {
+  const Vec3& c = static_cast<const CcdPolytope*>(object)->center;
+  ccdVec3Set(out, c.x(), c.y(), c.z());
+}
+
+btTransform bulletTransform(const Eigen::Isometry3d& pose) {
+  const Eigen::Matrix3d& r = pose.linear();
+  const Vec3& t = pose.translation();
+  return btTransform(
+      btMatrix3x3(r(0, 0), r(0, 1), r(0, 2), r(1, 0), r(1, 1), r(1, 2), r(2, 0), r(2, 1), r(2, 2)),
+      btVector3(t.x(), t.y(), t.z()));
+}
+
+// Every library's shapes for the same pairs, built once outside the timed loops.
+struct PairShapes {
+  std::vector<collision::ConvexPolytope> kaboumA, kaboumB;
+  std::vector<std::shared_ptr<fcl::Convexd>> fclA, fclB;
+  std::vector<std::unique_ptr<btConvexHullShape>> bulletA, bulletB;
+  std::vector<btTransform> bulletPoseA, bulletPoseB;
+  std::vector<CcdPolytope> ccdA, ccdB;
+};
+
+std::shared_ptr<fcl::Convexd> fclConvex(const std::vector<Vec3>& points) {
+  const ConvexHull hull = convexHull(points);
+  auto vertices = std::make_shared<std::vector<Vec3>>(hull.mesh.vertices);
+  auto faces = std::make_shared<std::vector<int>>();
+  for (const Triangle& t : hull.mesh.triangles) {
+    faces->insert(faces->end(),
+                  {3, static_cast<int>(t[0]), static_cast<int>(t[1]), static_cast<int>(t[2])});
+  }
+  return std::make_shared<fcl::Convexd>(vertices, static_cast<int>(hull.mesh.triangles.size()),
+                                        faces);
+}
+
+std::unique_ptr<btConvexHullShape> bulletHull(const std::vector<Vec3>& points) {
+  auto shape = std::make_unique<btConvexHullShape>();
+  for (const Vec3& p : points) shape->addPoint(btVector3(p.x(), p.y(), p.z()), false);
+  shape->recalcLocalAabb();
+  shape->setMargin(0.0);  // exact shapes, as for every other library
+  return shape;
+}
+
+PairShapes buildShapes(const std::vector<PolytopePair>& pairs) {
+  PairShapes shapes;
+  for (const PolytopePair& pair : pairs) {
+    shapes.kaboumA.emplace_back(pair.localA);
+    shapes.kaboumB.emplace_back(pair.localB);
+    shapes.fclA.push_back(fclConvex(pair.localA));
+    shapes.fclB.push_back(fclConvex(pair.localB));
+    shapes.bulletA.push_back(bulletHull(pair.localA));
+    shapes.bulletB.push_back(bulletHull(pair.localB));
+    shapes.bulletPoseA.push_back(bulletTransform(pair.poseA));
+    shapes.bulletPoseB.push_back(bulletTransform(pair.poseB));
+    shapes.ccdA.push_back({&pair.localA, pair.poseA.linear(), pair.poseA.translation(),
+                           pair.poseA * shapes.kaboumA.back().center()});
+    shapes.ccdB.push_back({&pair.localB, pair.poseB.linear(), pair.poseB.translation(),
+                           pair.poseB * shapes.kaboumB.back().center()});
+  }
+  return shapes;
+}
+
+std::vector<MethodReport> measureAll(const std::vector<PolytopePair>& pairs,
+                                     const std::vector<double>& truth, int runs) {
+  using collision::TransformedSupport;
+  PairShapes s = buildShapes(pairs);
+  std::vector<MethodReport> reports;
+
+  reports.push_back(measure(
+      "kaboum", truth, runs,
+      [&](std::size_t i) {
+        return collision::intersects(TransformedSupport(s.kaboumA[i], pairs[i].poseA),
+                                     TransformedSupport(s.kaboumB[i], pairs[i].poseB));
+      },
+      [&](std::size_t i) {
+        return collision::distance(TransformedSupport(s.kaboumA[i], pairs[i].poseA),
+                                   TransformedSupport(s.kaboumB[i], pairs[i].poseB))
+            .distance;
+      }));
+
+  const fcl::detail::GJKSolver_libccd<double> fclCcd;
+  reports.push_back(measure(
+      "fcl_libccd", truth, runs,
+      [&](std::size_t i) {
+        return fclCcd.shapeIntersect(*s.fclA[i], pairs[i].poseA, *s.fclB[i], pairs[i].poseB,
+                                     nullptr);
+      },
+      [&](std::size_t i) {
+        double d = 0.0;
+        fclCcd.shapeDistance(*s.fclA[i], pairs[i].poseA, *s.fclB[i], pairs[i].poseB, &d);
+        return std::max(d, 0.0);
+      }));
+
+  const fcl::detail::GJKSolver_indep<double> fclIndep;
+  reports.push_back(measure(
+      "fcl_indep", truth, runs,
+      [&](std::size_t i) {
+        return fclIndep.shapeIntersect(*s.fclA[i], pairs[i].poseA, *s.fclB[i], pairs[i].poseB,
+                                       nullptr);
+      },
+      [&](std::size_t i) {
+        double d = 0.0;
+        fclIndep.shapeDistance(*s.fclA[i], pairs[i].poseA, *s.fclB[i], pairs[i].poseB, &d);
+        return std::max(d, 0.0);
+      }));
+
+  btVoronoiSimplexSolver simplexSolver;
+  btGjkEpaPenetrationDepthSolver penetrationSolver;
+  auto pairDetector = [&](std::size_t i) {
+    btGjkPairDetector detector(s.bulletA[i].get(), s.bulletB[i].get(), &simplexSolver,
+                               &penetrationSolver);
+    btDiscreteCollisionDetectorInterface::ClosestPointInput input;
+    input.m_transformA = s.bulletPoseA[i];
+    input.m_transformB = s.bulletPoseB[i];
+    btPointCollector output;
+    detector.getClosestPoints(input, output, nullptr);
+    return output.m_hasResult ? output.m_distance : 0.0;
+  };
+  reports.push_back(measure(
+      "bullet_gjk_pair_detector", truth, runs,
+      [&](std::size_t i) { return pairDetector(i) <= 0.0; },
+      [&](std::size_t i) { return std::max(pairDetector(i), 0.0); }));
+
+  auto gjkEpa2 = [&](std::size_t i) {
+    btGjkEpaSolver2::sResults result;
+    const bool separated =
+        btGjkEpaSolver2::Distance(s.bulletA[i].get(), s.bulletPoseA[i], s.bulletB[i].get(),
+                                  s.bulletPoseB[i], btVector3(1, 0, 0), result);
+    return separated ? result.distance : 0.0;
+  };
+  reports.push_back(measure(
+      "bullet_gjk_epa2", truth, runs, [&](std::size_t i) { return gjkEpa2(i) <= 0.0; },
+      [&](std::size_t i) { return gjkEpa2(i); }));
+
+  ccd_t ccd;
+  CCD_INIT(&ccd);
+  ccd.support1 = ccdSupport;
+  ccd.support2 = ccdSupport;
+  ccd.center1 = ccdCenter;
+  ccd.center2 = ccdCenter;
+  ccd.max_iterations = 500;
+  reports.push_back(measure(
+      "libccd_gjk", truth, runs,
+      [&](std::size_t i) { return ccdGJKIntersect(&s.ccdA[i], &s.ccdB[i], &ccd) != 0; }, nullptr));
+  reports.push_back(measure(
+      "libccd_mpr", truth, runs,
+      [&](std::size_t i) { return ccdMPRIntersect(&s.ccdA[i], &s.ccdB[i], &ccd) != 0; }, nullptr));
+  return reports;
+}
+
+// Section "pairs": random convex polytope pairs per vertex count, every library side by side.
+nlohmann::json runPairSection(const CollisionBenchOptions& options) {
+  nlohmann::json section;
+  for (const int n : options.vertexCounts) {
+    if (n < 4) throw InputError(locate("--vertices", "a polytope needs at least 4 vertices"));
+    if (!options.quiet) std::cerr << "pairs N=" << n << ": exact reference...\n";
+    const std::vector<PolytopePair> pairs =
+        collision::randomPolytopePairs(options.pairs, n, options.seed);
+    std::vector<double> truth;
+    int overlapping = 0;
+    for (const PolytopePair& pair : pairs) {
+      truth.push_back(collision::minkowskiReference(pair.worldA(), pair.worldB()).signedDistance);
+      overlapping += truth.back() <= 0.0 ? 1 : 0;
+    }
+    if (!options.quiet) std::cerr << "pairs N=" << n << ": timing...\n";
+    const std::vector<MethodReport> reports = measureAll(pairs, truth, options.runs);
+    const MethodReport& ours = reports.front();
+
+    nlohmann::json methods;
+    for (const MethodReport& r : reports) {
+      nlohmann::json entry = {{"boolean_ns", r.booleanNs},
+                              {"boolean_ratio_to_kaboum", r.booleanNs / ours.booleanNs},
+                              {"missed_overlaps", r.missedOverlaps},
+                              {"deepest_missed_overlap", r.deepestMissed},
+                              {"false_alarms", r.falseAlarms}};
+      if (r.distanceNs) {
+        entry["distance_ns"] = *r.distanceNs;
+        entry["distance_ratio_to_kaboum"] = *r.distanceNs / *ours.distanceNs;
+        entry["distance_overestimates"] = r.overestimates;
+        entry["largest_overestimate"] = r.largestOverestimate;
+      }
+      methods[r.name] = entry;
+    }
+    section[std::to_string(n)] = {
+        {"pairs", options.pairs}, {"overlapping", overlapping}, {"methods", methods}};
+
+    if (!options.json) {
+      std::printf(
+          "\nconvex pairs, N=%d vertices: %zu pairs (%d overlapping), seed %llu, median of "
+          "%d runs\n",
+          n, options.pairs, overlapping, static_cast<unsigned long long>(options.seed),
+          options.runs);
+      std::printf("%-25s %10s %8s %11s %8s %7s %10s %7s %9s %10s\n", "method", "bool ns", "ratio",
+                  "dist ns", "ratio", "missed", "deepest", "alarms", "dist>true", "largest");
+      for (const MethodReport& r : reports) {
+        std::printf("%-25s %10.1f %8.2f", r.name.c_str(), r.booleanNs,
+                    r.booleanNs / ours.booleanNs);
+        if (r.distanceNs) {
+          std::printf(" %11.1f %8.2f", *r.distanceNs, *r.distanceNs / *ours.distanceNs);
+        } else {
+          std::printf(" %11s %8s", "-", "-");
+        }
+        std::printf(" %7d %10.2e %7d", r.missedOverlaps, r.deepestMissed, r.falseAlarms);
+        if (r.distanceNs) {
+          std::printf(" %9d %10.2e\n", r.overestimates, r.largestOverestimate);
+        } else {
+          std::printf(" %9s %10s\n", "-", "-");
+        }
+      }
+    }
+  }
+  return section;
+}
+
+struct CollisionSection {
+  const char* name;
+  const char* description;
+  nlohmann::json (*run)(const CollisionBenchOptions&);
+};
+
+const CollisionSection kCollisionSections[] = {
+    {"pairs", "convex polytope pairs: boolean and distance, per vertex count", runPairSection},
+};
+
+int runCollisionBench(const CollisionBenchOptions& options) {
+  if (options.pairs == 0) throw InputError(locate("--pairs", "must be at least 1"));
+  if (options.runs < 1) throw InputError(locate("--runs", "must be at least 1"));
+  for (const std::string& name : options.sections) {
+    const bool known = std::any_of(std::begin(kCollisionSections), std::end(kCollisionSections),
+                                   [&](const CollisionSection& s) { return name == s.name; });
+    if (!known) throw InputError(locate("--section", "unknown section '" + name + "'"));
+  }
+  nlohmann::json out;
+  for (const CollisionSection& section : kCollisionSections) {
+    const bool selected =
+        options.sections.empty() || std::find(options.sections.begin(), options.sections.end(),
+                                              section.name) != options.sections.end();
+    if (selected) out[section.name] = section.run(options);
+  }
+  if (options.json) std::cout << out.dump(2) << "\n";
+  return 0;
+}
+
+VerbRunner setupBench(CLI::App& command) {
+  command.require_subcommand(1);
+  auto options = std::make_shared<CollisionBenchOptions>();
+  CLI::App* collision = command.add_subcommand(
+      "collision", "Narrow-phase collision queries: kaboum vs FCL 0.7, Bullet 3.24 and libccd");
+  collision->add_option("--pairs", options->pairs, "Random pairs per vertex count")
+      ->capture_default_str();
+  collision->add_option("--vertices", options->vertexCounts, "Vertex counts of the polytopes")
+      ->capture_default_str();
+  collision->add_option("--runs", options->runs, "Timed runs; the median is reported")
+      ->capture_default_str();
+  collision->add_option("--seed", options->seed, "Seed of the random workload")
+      ->capture_default_str();
+  std::string sectionHelp = "Sections to run (default: all):";
+  for (const CollisionSection& s : kCollisionSections) {
+    sectionHelp += std::string(" ") + s.name + " (" + s.description + ")";
+  }
+  collision->add_option("--section", options->sections, sectionHelp);
+  collision->add_flag("--json", options->json, "Print the results as JSON");
+  collision->add_flag("--quiet", options->quiet, "No progress messages on stderr");
+  return [options, collision] {
+    if (collision->parsed()) return runCollisionBench(*options);
+    return 2;
+  };
+}
+
+const VerbRegistration registration{
+    "bench", "Benchmarks against reference libraries on identical queries", setupBench};
+
+}  // namespace
+}  // namespace kaboum::cli

@@ -1,0 +1,57 @@
+// `kaboum bench collision`: the side-by-side report users and docs/benchmarks.md rely on, and
+// its bad options.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "../support/test_support.hpp"
+
+namespace kaboum::test {
+namespace {
+
+TEST(BenchCli, ReportsEveryLibraryPerVertexCountAsJson) {
+  const ScratchDir dir;
+  const CliResult result =
+      runCli(dir, "bench collision --pairs 40 --runs 1 --vertices 8 16 --json --quiet");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.err, "");
+  const auto json = nlohmann::json::parse(result.out);
+  for (const char* n : {"8", "16"}) {
+    const auto& entry = json.at("pairs").at(n);
+    EXPECT_EQ(entry.at("pairs"), 40);
+    const auto& methods = entry.at("methods");
+    for (const char* method : {"kaboum", "fcl_libccd", "fcl_indep", "bullet_gjk_pair_detector",
+                               "bullet_gjk_epa2", "libccd_gjk", "libccd_mpr"}) {
+      ASSERT_TRUE(methods.contains(method)) << method;
+      EXPECT_GT(methods.at(method).at("boolean_ns").get<double>(), 0.0) << method;
+    }
+    EXPECT_EQ(methods.at("kaboum").at("missed_overlaps"), 0);
+    EXPECT_EQ(methods.at("kaboum").at("distance_overestimates"), 0);
+    EXPECT_DOUBLE_EQ(methods.at("kaboum").at("boolean_ratio_to_kaboum").get<double>(), 1.0);
+    EXPECT_FALSE(methods.at("libccd_mpr").contains("distance_ns"));
+  }
+}
+
+TEST(BenchCli, PrintsATableWithProgressOnStderr) {
+  const ScratchDir dir;
+  const CliResult result = runCli(dir, "bench collision --pairs 20 --runs 1 --vertices 8");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_NE(result.out.find("N=8 vertices: 20 pairs"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("fcl_libccd"), std::string::npos);
+  EXPECT_NE(result.err.find("exact reference"), std::string::npos);
+}
+
+TEST(BenchCli, BadOptionsGiveOneLineAndExitCode2) {
+  const ScratchDir dir;
+  for (const char* arguments :
+       {"bench collision --pairs 0", "bench collision --runs 0", "bench collision --vertices 3",
+        "bench collision --section nosuch", "bench collision --pairs x", "bench", "bench nosuch"}) {
+    const CliResult result = runCli(dir, arguments);
+    EXPECT_EQ(result.exitCode, 2) << arguments;
+    EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << arguments << result.err;
+    EXPECT_EQ(result.err.rfind("kaboum: error: ", 0), 0U) << arguments << result.err;
+  }
+}
+
+}  // namespace
+}  // namespace kaboum::test
