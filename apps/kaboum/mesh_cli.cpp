@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
+#include <cmath>
+
 #include "kaboum/core/error.hpp"
 #include "kaboum/geometry/mesh_analysis.hpp"
 #include "kaboum/geometry/mesh_cleanup.hpp"
@@ -31,6 +34,21 @@ LoadedMesh loadOrientedMesh(const std::string& path) {
   loaded.closed = analysis.closed;
   loaded.diagonal = analysis.diagonal;
   return loaded;
+}
+
+double parseEpsilon(const std::string& text, double diagonal) {
+  const bool percent = !text.empty() && text.back() == '%';
+  const std::string number = percent ? text.substr(0, text.size() - 1) : text;
+  double value = 0.0;
+  const auto [end, ec] = std::from_chars(number.data(), number.data() + number.size(), value);
+  if (ec != std::errc() || end != number.data() + number.size() || !(value > 0.0) ||
+      !std::isfinite(value)) {
+    throw InputError(
+        "--epsilon: expected a positive distance or percentage such as 0.002 or "
+        "1%, got '" +
+        text + "'");
+  }
+  return percent ? value / 100.0 * diagonal : value;
 }
 
 const char* sideName(BoundSide side) {

@@ -26,6 +26,10 @@ struct LoadedMesh {
 // mesh cannot be oriented (non-orientable or non-manifold where orientation is ambiguous).
 LoadedMesh loadOrientedMesh(const std::string& path);
 
+// An --epsilon value: "0.002" is a distance in the mesh's units, "0.5%" a percentage of
+// `diagonal`. InputError for anything but a positive finite number.
+double parseEpsilon(const std::string& text, double diagonal);
+
 const char* sideName(BoundSide side);
 nlohmann::json toJson(const HausdorffReport& report);
 // "max 1.23e-03 (0.10% of diagonal), mean ..., min ..."

@@ -1,7 +1,6 @@
 // `kaboum bound`: single-sided simplification with the bounding mesh algorithm (thesis §4.3).
 #include <fmt/format.h>
 
-#include <charconv>
 #include <cmath>
 #include <iostream>
 
@@ -26,22 +25,6 @@ struct BoundArgs {
   bool json = false;
   bool quiet = false;
 };
-
-// "0.002" is a distance in the mesh's units; "0.5%" is a percentage of the bounding-box diagonal.
-double parseEpsilon(const std::string& text, double diagonal) {
-  const bool percent = !text.empty() && text.back() == '%';
-  const std::string number = percent ? text.substr(0, text.size() - 1) : text;
-  double value = 0.0;
-  const auto [end, ec] = std::from_chars(number.data(), number.data() + number.size(), value);
-  if (ec != std::errc() || end != number.data() + number.size() || !(value > 0.0) ||
-      !std::isfinite(value)) {
-    throw InputError(
-        "--epsilon: expected a positive distance or percentage such as 0.002 or "
-        "1%, got '" +
-        text + "'");
-  }
-  return percent ? value / 100.0 * diagonal : value;
-}
 
 int runBound(const BoundArgs& args) {
   if (args.vertices == 0 && args.ratio == 0.0 && args.epsilon.empty()) {

@@ -1,0 +1,173 @@
+// `kaboum decompose`: bounding convex decomposition (thesis §4.4.2) with Table 4.3's figures.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <fstream>
+#include <iostream>
+
+#include "kaboum/core/error.hpp"
+#include "kaboum/geometry/convex_decomposition.hpp"
+#include "kaboum/geometry/mesh_analysis.hpp"
+#include "kaboum/io/mesh_io.hpp"
+#include "mesh_cli.hpp"
+#include "verb.hpp"
+
+namespace kaboum::cli {
+namespace {
+
+struct DecomposeArgs {
+  std::string input, output;
+  std::string epsilon = "3%";
+  std::size_t maxPieces = 12;
+  std::size_t samples = 100000;
+  bool json = false;
+  bool quiet = false;
+};
+
+// One OBJ object `piece_i` per piece; indices are global, as OBJ requires.
+void writePieces(const std::vector<ConvexPiece>& pieces, const std::string& path) {
+  std::ofstream out(path);
+  if (!out) throw InputError(locate(path, "cannot be written"));
+  out << "# kaboum decompose: " << pieces.size() << " convex pieces\n";
+  std::size_t offset = 1;
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    out << "o piece_" << i << "\n";
+    for (const Vec3& v : pieces[i].mesh.vertices) {
+      out << fmt::format("v {:.17g} {:.17g} {:.17g}\n", v.x(), v.y(), v.z());
+    }
+    for (const Triangle& t : pieces[i].mesh.triangles) {
+      out << "f " << t[0] + offset << " " << t[1] + offset << " " << t[2] + offset << "\n";
+    }
+    offset += pieces[i].mesh.vertexCount();
+  }
+  if (!out.flush()) throw InputError(locate(path, "cannot be written"));
+}
+
+struct VertexCounts {
+  std::size_t min = 0, max = 0;
+  double mean = 0.0;
+};
+
+VertexCounts vertexCounts(const std::vector<ConvexPiece>& pieces) {
+  VertexCounts counts{pieces.front().mesh.vertexCount(), 0, 0.0};
+  for (const ConvexPiece& piece : pieces) {
+    counts.min = std::min(counts.min, piece.mesh.vertexCount());
+    counts.max = std::max(counts.max, piece.mesh.vertexCount());
+    counts.mean += static_cast<double>(piece.mesh.vertexCount());
+  }
+  counts.mean /= static_cast<double>(pieces.size());
+  return counts;
+}
+
+nlohmann::json toJson(const DistanceStats& stats, double diagonal) {
+  return {{"min", stats.min},
+          {"mean", stats.mean},
+          {"max", stats.max},
+          {"max_percent_of_diagonal", 100.0 * stats.max / diagonal}};
+}
+
+int runDecompose(const DecomposeArgs& args) {
+  const TriangleMesh mesh = readMesh(args.input);
+  DecompositionOptions options;
+  options.epsilon = parseEpsilon(args.epsilon, boundingBoxDiagonal(mesh));
+  options.maxPieces = args.maxPieces;
+  if (!args.quiet) std::cerr << "decompose: " << args.input << "\n";
+  Decomposition result;
+  DecompositionQuality quality;
+  try {
+    result = decomposeBounding(mesh, options);
+    if (!args.quiet) std::cerr << "decompose: measuring distances\n";
+    quality = measureDecomposition(result.closedInput, result.pieces, args.samples, 1);
+  } catch (const InputError& e) {
+    throw InputError(locate(args.input, e.what()));
+  }
+  writePieces(result.pieces, args.output);
+  const DecompositionStats& s = result.stats;
+  const VertexCounts counts = vertexCounts(result.pieces);
+  const double diagonal = quality.diagonal;
+
+  if (args.json) {
+    const nlohmann::json out = {
+        {"input", args.input},
+        {"output", args.output},
+        {"input_vertices", s.inputVertices},
+        {"input_triangles", s.inputTriangles},
+        {"holes_filled", s.holesFilled},
+        {"epsilon", s.epsilon},
+        {"epsilon_percent_of_diagonal", 100.0 * s.epsilon / diagonal},
+        {"max_pieces", args.maxPieces},
+        {"pieces", result.pieces.size()},
+        {"total_vertices", s.totalVertices},
+        {"vertices_per_piece", {{"min", counts.min}, {"mean", counts.mean}, {"max", counts.max}}},
+        {"bounded_vertices", s.boundedVertices},
+        {"hull_vertices", s.hullVertices},
+        {"splits", s.splits},
+        {"stop_reason", s.stopReason},
+        {"estimated_error", s.estimatedError},
+        {"seconds", s.seconds},
+        {"distances",
+         {{"original_to_approximation", toJson(quality.originalToApproximation, diagonal)},
+          {"approximation_to_original", toJson(quality.approximationToOriginal, diagonal)},
+          {"diagonal", diagonal},
+          {"samples", quality.samples},
+          {"uncovered_samples", quality.uncovered},
+          {"worst_uncovered", quality.worstUncovered}}},
+    };
+    std::cout << out.dump(2) << "\n";
+    return 0;
+  }
+  std::cout << fmt::format(
+      "input:  {} vertices, {} triangles ({})\n", s.inputVertices, s.inputTriangles,
+      s.holesFilled == 0 ? std::string("closed")
+                         : fmt::format("open: {} holes filled", s.holesFilled));
+  std::cout << fmt::format("output: {} convex pieces, {} vertices -> {}\n", result.pieces.size(),
+                           s.totalVertices, args.output);
+  std::cout << fmt::format("vertices per convex: min {}, mean {:.1f}, max {}\n", counts.min,
+                           counts.mean, counts.max);
+  std::cout << fmt::format("epsilon: {:.4g} ({:.3f}% of diagonal), max pieces {}; stopped: {}\n",
+                           s.epsilon, 100.0 * s.epsilon / diagonal, args.maxPieces, s.stopReason);
+  std::cout << "distance original->approximation: "
+            << describe(quality.originalToApproximation, diagonal) << "\n";
+  std::cout << "distance approximation->original: "
+            << describe(quality.approximationToOriginal, diagonal) << "\n";
+  std::cout << fmt::format(
+      "time: {:.3f} s ({} splits; step 1 bound {} vertices; hulls {} "
+      "vertices before simplification)\n",
+      s.seconds, s.splits, s.boundedVertices, s.hullVertices);
+  if (quality.uncovered > 0) {
+    std::cout << fmt::format("warning: {} of {} surface samples outside every piece\n",
+                             quality.uncovered, quality.samples);
+  }
+  return 0;
+}
+
+VerbRunner setupDecompose(CLI::App& command) {
+  auto args = std::make_shared<DecomposeArgs>();
+  command.add_option("input", args->input, "Input mesh (STL, OBJ, PLY, OFF, DAE, WRL)")->required();
+  command
+      .add_option("-o,--output", args->output, "Output OBJ, one object piece_i per convex piece")
+      ->required();
+  command
+      .add_option("--epsilon", args->epsilon,
+                  "Largest distance from the pieces to the input: a distance, or E% of the "
+                  "bounding-box diagonal")
+      ->capture_default_str();
+  command.add_option("--max-pieces", args->maxPieces, "Stop splitting at this many pieces")
+      ->capture_default_str()
+      ->check(CLI::Range(std::size_t{1}, std::size_t{100000}));
+  command
+      .add_option("--samples", args->samples,
+                  "Random surface samples for the reported distances (plus all vertices and "
+                  "edge midpoints)")
+      ->capture_default_str();
+  command.add_flag("--json", args->json, "Print one JSON object instead of text");
+  command.add_flag("-q,--quiet", args->quiet, "No progress on stderr");
+  return [args] { return runDecompose(*args); };
+}
+
+const VerbRegistration registration{
+    "decompose", "Decompose a mesh into convex pieces whose union contains it (§4.4.2)",
+    &setupDecompose};
+
+}  // namespace
+}  // namespace kaboum::cli

@@ -1,0 +1,630 @@
+#include "kaboum/geometry/convex_decomposition.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <optional>
+#include <thread>
+
+#include "kaboum/core/error.hpp"
+#include "kaboum/geometry/bounding_mesh.hpp"
+#include "kaboum/geometry/hole_filling.hpp"
+#include "kaboum/geometry/mesh_analysis.hpp"
+#include "kaboum/geometry/mesh_cleanup.hpp"
+#include "kaboum/geometry/surface_sampling.hpp"
+#include "kaboum/geometry/triangle_bvh.hpp"
+
+namespace kaboum {
+namespace {
+
+// How ε is shared between the three steps of §4.4.2 (the distances add up by the triangle
+// inequality): the outer bound of step 1, the concavity left by step 2, the growth in step 3.
+constexpr double kBoundShare = 0.1;
+constexpr double kConcavityShare = 0.55;
+constexpr double kSimplifyShare = 0.35;
+static_assert(kBoundShare + kConcavityShare + kSimplifyShare <= 1.0);
+
+constexpr int kCutsPerAxis = 5;  // evenly spaced candidate planes per axis, plus one at the worst
+                                 // concavity sample
+constexpr std::size_t kSplitBeyondLimit = 2;  // split up to this many times the piece limit
+// A cell whose concavity survived this many splits in a row (each keeping more than kStallRatio
+// of it) is not split further: the splits are better spent elsewhere (a round pocket, say, needs
+// more cuts through it than the piece limit allows).
+constexpr int kMaxStalls = 3;
+constexpr double kStallRatio = 0.9;
+constexpr std::size_t kShortlist = 1;  // cuts whose children's concavity is measured
+
+double meshVolume(const TriangleMesh& mesh) {
+  double sixVolume = 0.0;
+  for (const Triangle& t : mesh.triangles) {
+    sixVolume += mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
+  }
+  return sixVolume / 6.0;
+}
+
+// The solid enclosed by the closed bound: inside tests and distances to its surface.
+class Solid {
+ public:
+  Solid(const TriangleMesh& surface, double tolerance) : bvh_(surface), tolerance_(tolerance) {}
+
+  // Inside, or on the surface up to the tolerance (a corner there is kept, which is harmless).
+  [[nodiscard]] bool contains(const Vec3& p) const {
+    return bvh_.closest(p).distance <= tolerance_ || bvh_.contains(p);
+  }
+  // Largest distance to the solid over `samples` (0 for samples inside), and where it occurs.
+  [[nodiscard]] std::pair<double, Vec3> largestDistance(const std::vector<Vec3>& samples) const {
+    double worst = 0.0;
+    Vec3 where = samples.empty() ? Vec3::Zero() : samples.front();
+    for (const Vec3& p : samples) {
+      const double d = bvh_.closest(p).distance;
+      if (d > worst && !bvh_.contains(p)) {
+        worst = d;
+        where = p;
+      }
+    }
+    return {worst, where};
+  }
+
+ private:
+  TriangleBvh bvh_;
+  double tolerance_;
+};
+
+// The part of the bound inside one convex cell of the hierarchical split: the bound's triangles
+// clipped to the cell (convex polygons, stored flat) and the cell's walls and corners.
+struct Cell {
+  std::vector<Vec3> polygonPoints;
+  std::vector<std::uint32_t> polygonEnds;  // end offset of every polygon in polygonPoints
+  std::vector<HullPlane> walls;            // n.x <= d inside
+  std::vector<Vec3> corners;               // cell corners inside the solid
+  ConvexHull hull;
+  double hullVolume = 0.0;
+  double concavity = 0.0;  // largest sampled distance from the hull to the solid
+  Vec3 worstPoint = Vec3::Zero();
+  int stalls = 0;  // splits in a row, up to this cell, that left the concavity nearly unchanged
+};
+
+// Keeps the part of every polygon with n.x <= d + tolerance (Sutherland-Hodgman).
+void clipPolygons(const Cell& from, const HullPlane& plane, double tolerance, Cell& to) {
+  to.polygonPoints.clear();
+  to.polygonEnds.clear();
+  std::uint32_t begin = 0;
+  for (const std::uint32_t end : from.polygonEnds) {
+    const std::size_t before = to.polygonPoints.size();
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const Vec3& p = from.polygonPoints[i];
+      const Vec3& q = from.polygonPoints[i + 1 < end ? i + 1 : begin];
+      const double sp = plane.normal.dot(p) - plane.offset;
+      const double sq = plane.normal.dot(q) - plane.offset;
+      if (sp <= tolerance) to.polygonPoints.push_back(p);
+      if ((sp < -tolerance && sq > tolerance) || (sp > tolerance && sq < -tolerance)) {
+        to.polygonPoints.push_back(p + (q - p) * (sp / (sp - sq)));
+      }
+    }
+    if (to.polygonPoints.size() > before) {
+      to.polygonEnds.push_back(static_cast<std::uint32_t>(to.polygonPoints.size()));
+    }
+    begin = end;
+  }
+}
+
+// The corners of the child cell `walls` (the parent's walls and the cut, last) that lie in the
+// solid: the parent's inside corners on the kept side, and the new corners where the cut meets
+// two other walls. The walls include the bound's enlarged bounding box, so every cell is bounded.
+std::vector<Vec3> childCorners(const std::vector<Vec3>& parentCorners,
+                               const std::vector<HullPlane>& walls, const Solid& solid,
+                               double tolerance) {
+  const HullPlane& cut = walls.back();
+  std::vector<Vec3> corners;
+  for (const Vec3& c : parentCorners) {
+    if (cut.normal.dot(c) <= cut.offset + tolerance) corners.push_back(c);
+  }
+  const std::size_t n = walls.size() - 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) {
+      Eigen::Matrix3d normals;
+      normals << walls[i].normal.transpose(), walls[j].normal.transpose(), cut.normal.transpose();
+      if (std::abs(normals.determinant()) < 1e-9) continue;
+      const Vec3 corner =
+          normals.partialPivLu().solve(Vec3(walls[i].offset, walls[j].offset, cut.offset));
+      const bool feasible = std::all_of(walls.begin(), walls.end(), [&](const HullPlane& w) {
+        return w.normal.dot(corner) <= w.offset + tolerance;
+      });
+      if (feasible && solid.contains(corner)) corners.push_back(corner);
+    }
+  }
+  return corners;
+}
+
+// Drops points closer than `snap` to an earlier kept point; `points` are sorted by x first.
+std::vector<Vec3> thinOut(const std::vector<Vec3>& points, double snap) {
+  std::vector<Vec3> kept;
+  for (const Vec3& p : points) {
+    bool near = false;
+    for (auto k = kept.rbegin(); k != kept.rend() && p.x() - k->x() <= snap && !near; ++k) {
+      near = (p - *k).norm() <= snap;
+    }
+    if (!near) kept.push_back(p);
+  }
+  return kept;
+}
+
+// The hull of the cell's polygons and inside corners; false when it has no volume. qhull rejects
+// some inputs with points a rounding error apart (clip points next to vertices); those are
+// retried without points closer than `snap` to another, which moves the hull by at most `snap`.
+bool buildHull(Cell& cell, double snap) {
+  std::vector<Vec3> points = cell.polygonPoints;
+  points.insert(points.end(), cell.corners.begin(), cell.corners.end());
+  const auto lexicographic = [](const Vec3& a, const Vec3& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  };
+  std::sort(points.begin(), points.end(), lexicographic);
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    if (attempt == 1) points = thinOut(points, snap);
+    if (points.size() < 4) return false;
+    try {
+      cell.hull = convexHull(points, "piece");
+      cell.hullVolume = meshVolume(cell.hull.mesh);
+      return cell.hullVolume > 0.0;
+    } catch (const InputError&) {
+      // flat (the cell holds a sliver of the surface only) or qhull's precision check failed
+    }
+  }
+  return false;
+}
+
+struct Context {
+  const Solid& solid;
+  double tolerance;  // geometric tolerance, a tiny fraction of the diagonal
+  double snap;       // largest distance a hull may lose points by (see buildHull)
+  std::size_t samples;
+  std::uint64_t seed;
+};
+
+void measureConcavity(Cell& cell, const Context& context, std::uint64_t salt) {
+  const std::vector<Vec3> samples =
+      sampleSurface(cell.hull.mesh, context.samples, context.seed * 1000003u + salt);
+  std::tie(cell.concavity, cell.worstPoint) = context.solid.largestDistance(samples);
+}
+
+// The part of `parent` on the side n.x <= d of `cut`, or nothing when it has no volume.
+std::optional<Cell> childCell(const Cell& parent, const HullPlane& cut, const Context& context) {
+  Cell child;
+  clipPolygons(parent, cut, context.tolerance, child);
+  if (child.polygonEnds.empty()) return std::nullopt;
+  child.walls = parent.walls;
+  child.walls.push_back(cut);
+  child.corners = childCorners(parent.corners, child.walls, context.solid, context.tolerance);
+  if (!buildHull(child, context.snap)) return std::nullopt;
+  return child;
+}
+
+// Candidate cut directions: the coordinate axes and the principal axes of the hull's vertices.
+std::vector<Vec3> cutAxes(const Cell& cell) {
+  std::vector<Vec3> axes{Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
+  const auto& vertices = cell.hull.mesh.vertices;
+  Vec3 mean = Vec3::Zero();
+  for (const Vec3& v : vertices) mean += v;
+  mean /= static_cast<double>(vertices.size());
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (const Vec3& v : vertices) covariance += (v - mean) * (v - mean).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+  for (int i = 2; i >= 0; --i) {
+    const Vec3 axis = solver.eigenvectors().col(i).normalized();
+    const bool coordinateAxis = std::any_of(axes.begin(), axes.begin() + 3, [&](const Vec3& a) {
+      return std::abs(a.dot(axis)) > 1.0 - 1e-6;
+    });
+    if (!coordinateAxis && axis.allFinite()) axes.push_back(axis);
+  }
+  return axes;
+}
+
+// The split of `cell` whose children's larger concavity is smallest, among the kShortlist
+// candidate cuts with the smallest total hull volume (the hull volume beyond the solid's is what
+// concavity grows with, and it is cheap to compare); nothing when no candidate cuts it in two.
+// The children come with their concavity measured.
+std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& context,
+                                               std::uint64_t& measured) {
+  struct Candidate {
+    Cell below, above;
+    bool throughWorst;  // the cut passes through the cell's worst concavity sample
+  };
+  std::vector<Candidate> candidates;
+  for (const Vec3& axis : cutAxes(cell)) {
+    double lo = std::numeric_limits<double>::infinity();
+    double hi = -lo;
+    for (const Vec3& v : cell.hull.mesh.vertices) {
+      lo = std::min(lo, axis.dot(v));
+      hi = std::max(hi, axis.dot(v));
+    }
+    std::vector<double> positions;
+    for (int k = 1; k <= kCutsPerAxis; ++k) {
+      positions.push_back(lo + (hi - lo) * k / (kCutsPerAxis + 1));
+    }
+    const double worst = axis.dot(cell.worstPoint);
+    if (worst > lo + 0.02 * (hi - lo) && worst < hi - 0.02 * (hi - lo)) positions.push_back(worst);
+    for (const double position : positions) {
+      auto below = childCell(cell, HullPlane{axis, position}, context);
+      if (!below) continue;
+      auto above = childCell(cell, HullPlane{-axis, -position}, context);
+      if (!above) continue;
+      candidates.push_back({std::move(*below), std::move(*above), position == worst});
+    }
+  }
+  if (candidates.empty()) return std::nullopt;
+  const auto volume = [](const Candidate& c) { return c.below.hullVolume + c.above.hullVolume; };
+  const std::size_t shortlist = std::min(kShortlist, candidates.size());
+  std::partial_sort(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(shortlist),
+                    candidates.end(),
+                    [&](const auto& a, const auto& b) { return volume(a) < volume(b); });
+  std::size_t best = 0;
+  double bestConcavity = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    Candidate& c = candidates[i];
+    if (i >= shortlist && !c.throughWorst) continue;
+    measureConcavity(c.below, context, measured++);
+    measureConcavity(c.above, context, measured++);
+    const double concavity = std::max(c.below.concavity, c.above.concavity);
+    if (concavity < bestConcavity) {
+      bestConcavity = concavity;
+      best = i;
+    }
+  }
+  return std::pair{std::move(candidates[best].below), std::move(candidates[best].above)};
+}
+
+// The hull of two pieces together (pieces' vertices only: cells are not needed after splitting).
+std::optional<Cell> mergedCell(const Cell& a, const Cell& b, double snap) {
+  Cell merged;
+  merged.polygonPoints = a.hull.mesh.vertices;
+  merged.polygonPoints.insert(merged.polygonPoints.end(), b.hull.mesh.vertices.begin(),
+                              b.hull.mesh.vertices.end());
+  if (!buildHull(merged, snap)) return std::nullopt;
+  return merged;
+}
+
+bool boxesTouch(const Cell& a, const Cell& b, double tolerance) {
+  const auto box = [](const Cell& c) {
+    Eigen::AlignedBox3d result;
+    for (const Vec3& v : c.hull.mesh.vertices) result.extend(v);
+    return result;
+  };
+  Eigen::AlignedBox3d first = box(a);
+  first.extend(first.min() - Vec3::Constant(tolerance))
+      .extend(first.max() + Vec3::Constant(tolerance));
+  return first.intersects(box(b));
+}
+
+// Greedy merging of neighbouring pieces, the pair adding the least hull volume first: forced
+// while there are more than `maxPieces`, afterwards only when the merged piece's concavity stays
+// within `budget`. Returns the number of merges.
+std::size_t mergeNeighbours(std::vector<Cell>& cells, std::size_t maxPieces, double budget,
+                            const Context& context, double tolerance, std::uint64_t& measured) {
+  constexpr double kNoPair = std::numeric_limits<double>::infinity();
+  const std::size_t n = cells.size();
+  std::vector<bool> alive(n, true);
+  std::vector<double> addedVolume(n * n, kNoPair);  // [i * n + j], i < j
+  const auto price = [&](std::size_t i, std::size_t j) {
+    if (!boxesTouch(cells[i], cells[j], tolerance)) return;
+    const auto merged = mergedCell(cells[i], cells[j], context.snap);
+    if (merged)
+      addedVolume[i * n + j] = merged->hullVolume - cells[i].hullVolume - cells[j].hullVolume;
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) price(i, j);
+  }
+  std::size_t count = n, merges = 0;
+  while (true) {
+    const auto best = std::min_element(addedVolume.begin(), addedVolume.end());
+    if (*best == kNoPair) break;
+    const auto index = static_cast<std::size_t>(best - addedVolume.begin());
+    const std::size_t i = index / n, j = index % n;
+    Cell merged = *mergedCell(cells[i], cells[j], context.snap);  // priced, so it has a hull
+    measureConcavity(merged, context, measured++);
+    if (count <= maxPieces && merged.concavity > budget) {
+      *best = kNoPair;  // rejected
+      continue;
+    }
+    cells[i] = std::move(merged);
+    alive[j] = false;
+    --count;
+    ++merges;
+    for (std::size_t k = 0; k < n; ++k) {
+      addedVolume[std::min(k, j) * n + std::max(k, j)] = kNoPair;
+      if (k != i && alive[k]) {
+        addedVolume[std::min(k, i) * n + std::max(k, i)] = kNoPair;
+        price(std::min(k, i), std::max(k, i));
+      }
+    }
+  }
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!alive[i]) continue;
+    if (kept != i) cells[kept] = std::move(cells[i]);
+    ++kept;
+  }
+  cells.resize(kept);
+  return merges;
+}
+
+// Largest distance from the points to the convex piece (0 inside), exact.
+double largestDistanceToConvex(const std::vector<Vec3>& points, const ConvexHull& piece) {
+  double worst = 0.0;
+  for (const Vec3& p : points) {
+    const bool inside =
+        std::all_of(piece.planes.begin(), piece.planes.end(),
+                    [&](const HullPlane& h) { return h.normal.dot(p) <= h.offset; });
+    if (inside) continue;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Triangle& t : piece.mesh.triangles) {
+      const Vec3 c = closestPointOnTriangle(p, piece.mesh.vertices[t[0]], piece.mesh.vertices[t[1]],
+                                            piece.mesh.vertices[t[2]]);
+      nearest = std::min(nearest, (c - p).norm());
+    }
+    worst = std::max(worst, nearest);
+  }
+  return worst;
+}
+
+// §4.4.2 step 3: the convex hull of an outer bounding mesh of `piece`. It contains the piece and is
+// convex; as the distance to a convex set is a convex function, its largest distance to the piece
+// is attained at its vertices, which is measured exactly. Quadric-error limits from 4·budget down
+// are tried and the first result within `budget` is kept; the piece itself if none is.
+std::pair<ConvexHull, double> simplifyPiece(const ConvexHull& piece, double budget) {
+  for (const double factor : {4.0, 2.0, 1.0, 0.5, 0.25}) {
+    BoundingMeshOptions options;
+    options.side = BoundSide::Outer;
+    options.maxError = factor * budget;
+    ConvexHull simplified;
+    try {
+      simplified = convexHull(simplifyBounding(piece.mesh, options).mesh.vertices, "piece");
+    } catch (const InputError&) {
+      continue;
+    }
+    if (simplified.mesh.vertexCount() >= piece.mesh.vertexCount()) break;
+    const double growth = largestDistanceToConvex(simplified.mesh.vertices, piece);
+    if (growth <= budget) return {std::move(simplified), growth};
+  }
+  return {piece, 0.0};
+}
+
+// Welded, outward, hole-filled copy of the input; InputError for unusable input.
+TriangleMesh closedInput(const TriangleMesh& mesh, DecompositionStats& stats) {
+  if (mesh.triangles.empty()) throw InputError("mesh has no triangles");
+  for (const Vec3& v : mesh.vertices) {
+    if (!v.allFinite()) throw InputError("mesh has a non-finite vertex coordinate");
+  }
+  for (const Triangle& t : mesh.triangles) {
+    for (const std::uint32_t i : t) {
+      if (i >= mesh.vertices.size()) throw InputError("mesh has a vertex index out of range");
+    }
+  }
+  TriangleMesh closed = mesh;
+  weldVertices(closed);
+  bool flipped = false;
+  if (!orientOutward(closed, flipped)) {
+    throw InputError(
+        "mesh cannot be oriented consistently (non-orientable or non-manifold surface)");
+  }
+  stats.holesFilled = fillHoles(closed).loops;
+  if (!(meshVolume(closed) > 1e-12 * std::pow(boundingBoxDiagonal(closed), 3))) {
+    throw InputError("mesh encloses no volume (flat, or its holes could not be closed outward)");
+  }
+  return closed;
+}
+
+}  // namespace
+
+bool ConvexPiece::contains(const Vec3& p, double tolerance) const {
+  return std::all_of(planes.begin(), planes.end(),
+                     [&](const HullPlane& h) { return h.normal.dot(p) <= h.offset + tolerance; });
+}
+
+Decomposition decomposeBounding(const TriangleMesh& mesh, const DecompositionOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  Decomposition result;
+  DecompositionStats& stats = result.stats;
+  stats.inputVertices = mesh.vertexCount();
+  stats.inputTriangles = mesh.triangleCount();
+  result.closedInput = closedInput(mesh, stats);
+  const TriangleMesh& closed = result.closedInput;
+  stats.diagonal = boundingBoxDiagonal(closed);
+  stats.epsilon =
+      options.epsilon > 0.0 ? options.epsilon : options.epsilonPercent / 100.0 * stats.diagonal;
+  if (!(stats.epsilon > 0.0) || !std::isfinite(stats.epsilon)) {
+    throw InputError("epsilon must be a positive distance");
+  }
+  if (options.maxPieces == 0) throw InputError("the piece limit must be at least 1");
+  const double tolerance = 1e-12 * stats.diagonal;
+
+  // Step 1: an outer bounding mesh at about ε/10 (Hausdorff distance measured on samples). The
+  // bounding mesh algorithm keeps its result outside an embedded input; a self-intersecting input
+  // (common in CAD exports, and hole caps can fold) has no well-defined outside, so it is
+  // decomposed as it is: step 2 then contains its whole surface by construction.
+  TriangleMesh bound = closed;
+  double boundError = 0.0;
+  stats.selfIntersectingPairs = countSelfIntersections(closed);
+  if (stats.selfIntersectingPairs == 0) {
+    BoundingMeshOptions boundOptions;
+    boundOptions.side = BoundSide::Outer;
+    HausdorffReport boundDistance;
+    bound = simplifyBoundingWithin(closed, boundOptions, kBoundShare * stats.epsilon, 2000,
+                                   boundDistance, 3)
+                .mesh;
+    boundError = boundDistance.resultToOriginal.max;
+  }
+  stats.boundedVertices = bound.vertexCount();
+
+  // Step 2: hierarchical plane splits, the worst concavity first.
+  const Solid solid(bound, 1e-9 * stats.diagonal);
+  const Context context{solid, tolerance, 1e-8 * stats.diagonal, options.concavitySamples,
+                        options.seed};
+  const double concavityBudget = kConcavityShare * stats.epsilon;
+  Cell root;
+  for (const Triangle& t : bound.triangles) {
+    for (const std::uint32_t v : t) root.polygonPoints.push_back(bound.vertices[v]);
+    root.polygonEnds.push_back(static_cast<std::uint32_t>(root.polygonPoints.size()));
+  }
+  const MeshAnalysis boundAnalysis = analyzeMesh(bound);
+  const Vec3 margin = Vec3::Constant(0.01 * stats.diagonal);
+  const Vec3 lo = boundAnalysis.boxMin - margin, hi = boundAnalysis.boxMax + margin;
+  for (int axis = 0; axis < 3; ++axis) {
+    root.walls.push_back({Vec3::Unit(axis), hi[axis]});
+    root.walls.push_back({-Vec3::Unit(axis), -lo[axis]});
+  }
+  if (!buildHull(root, context.snap)) throw InputError("mesh encloses no volume");
+  std::uint64_t measured = 0;
+  measureConcavity(root, context, measured++);
+
+  // Splitting goes past the piece limit; merging brings the count back (better cuts than a
+  // top-down split stopped early).
+  const std::size_t splitLimit = std::max<std::size_t>(kSplitBeyondLimit * options.maxPieces, 2);
+  std::vector<Cell> leaves;
+  std::vector<Cell> open{std::move(root)};  // cells that may still be split
+  const auto byConcavity = [](const Cell& a, const Cell& b) { return a.concavity < b.concavity; };
+  while (!open.empty()) {
+    const auto worst = std::max_element(open.begin(), open.end(), byConcavity);
+    if (worst->concavity <= concavityBudget) break;
+    if (leaves.size() + open.size() >= splitLimit) break;
+    Cell cell = std::move(*worst);
+    open.erase(worst);
+    auto split = bestSplit(cell, context, measured);
+    if (!split) {
+      leaves.push_back(std::move(cell));
+      continue;
+    }
+    ++stats.splits;
+    for (Cell* child : {&split->first, &split->second}) {
+      child->stalls = child->concavity > kStallRatio * cell.concavity ? cell.stalls + 1 : 0;
+      (child->stalls >= kMaxStalls ? leaves : open).push_back(std::move(*child));
+    }
+  }
+  for (Cell& cell : open) leaves.push_back(std::move(cell));
+  stats.merges = mergeNeighbours(leaves, options.maxPieces, concavityBudget, context,
+                                 1e-6 * stats.diagonal, measured);
+  const bool limited = std::any_of(leaves.begin(), leaves.end(),
+                                   [&](const Cell& c) { return c.concavity > concavityBudget; });
+  const bool atLimit = stats.splits + 1 >= splitLimit || leaves.size() >= options.maxPieces;
+  stats.stopReason = !limited  ? "within epsilon"
+                     : atLimit ? "piece limit reached"
+                               : "cuts stopped reducing the concavity";
+
+  // Step 3: fewer vertices per piece, staying outside it and convex.
+  double worstConcavity = 0.0, worstGrowth = 0.0;
+  for (const Cell& cell : leaves) {
+    stats.hullVertices += cell.hull.mesh.vertexCount();
+    worstConcavity = std::max(worstConcavity, cell.concavity);
+    auto [hull, growth] = simplifyPiece(cell.hull, kSimplifyShare * stats.epsilon);
+    worstGrowth = std::max(worstGrowth, growth);
+    stats.totalVertices += hull.mesh.vertexCount();
+    result.pieces.push_back({std::move(hull.mesh), std::move(hull.planes)});
+  }
+  stats.estimatedError = boundError + worstConcavity + worstGrowth;
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+std::vector<Decomposition> decomposeBoundingEach(std::span<const TriangleMesh> meshes,
+                                                 const DecompositionOptions& options,
+                                                 unsigned threads) {
+  std::vector<Decomposition> results(meshes.size());
+  std::vector<std::exception_ptr> errors(meshes.size());
+  std::atomic<std::size_t> next{0};
+  const auto work = [&] {
+    for (std::size_t i = next++; i < meshes.size(); i = next++) {
+      try {
+        results[i] = decomposeBounding(meshes[i], options);
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    }
+  };
+  {
+    std::vector<std::jthread> helpers;
+    for (unsigned t = 1; t < std::max(threads, 1u); ++t) helpers.emplace_back(work);
+    work();
+  }
+  for (std::size_t i = 0; i < meshes.size(); ++i) {
+    if (!errors[i]) continue;
+    try {
+      std::rethrow_exception(errors[i]);
+    } catch (const InputError& error) {
+      throw InputError(fmt::format("mesh {}: {}", i, error.what()));
+    }
+  }
+  return results;
+}
+
+TriangleMesh mergePieces(std::span<const ConvexPiece> pieces) {
+  TriangleMesh merged;
+  for (const ConvexPiece& piece : pieces) {
+    const auto offset = static_cast<std::uint32_t>(merged.vertices.size());
+    merged.vertices.insert(merged.vertices.end(), piece.mesh.vertices.begin(),
+                           piece.mesh.vertices.end());
+    for (const Triangle& t : piece.mesh.triangles) {
+      merged.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    }
+  }
+  return merged;
+}
+
+DecompositionQuality measureDecomposition(const TriangleMesh& original,
+                                          std::span<const ConvexPiece> pieces,
+                                          std::size_t randomSamples, std::uint64_t seed) {
+  if (pieces.empty()) throw InputError("no convex pieces to measure");
+  DecompositionQuality quality;
+  quality.diagonal = boundingBoxDiagonal(original);
+  const double tolerance = 1e-7 * quality.diagonal;
+  const TriangleBvh originalBvh(original);
+  const TriangleBvh piecesBvh(mergePieces(pieces));
+  const auto accumulate = [](DistanceStats& stats, double d, std::size_t& count) {
+    stats.min = count == 0 ? d : std::min(stats.min, d);
+    stats.max = std::max(stats.max, d);
+    stats.mean += d;
+    ++count;
+  };
+
+  std::size_t count = 0;
+  for (const Vec3& p : sampleSurface(original, randomSamples, seed)) {
+    accumulate(quality.originalToApproximation, piecesBvh.closest(p).distance, count);
+    double outside = std::numeric_limits<double>::infinity();  // least plane violation
+    for (const ConvexPiece& piece : pieces) {
+      double violation = 0.0;
+      for (const HullPlane& h : piece.planes) {
+        violation = std::max(violation, h.normal.dot(p) - h.offset);
+      }
+      outside = std::min(outside, violation);
+    }
+    if (outside > tolerance) {
+      ++quality.uncovered;
+      quality.worstUncovered = std::max(quality.worstUncovered, outside);
+    }
+  }
+  quality.originalToApproximation.mean /= static_cast<double>(std::max<std::size_t>(count, 1));
+  quality.samples = count;
+
+  count = 0;
+  const std::size_t perPiece = randomSamples / pieces.size() + 1;
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    for (const Vec3& p : sampleSurface(pieces[i].mesh, perPiece, seed + i + 1)) {
+      bool inOther = false;
+      for (std::size_t j = 0; j < pieces.size() && !inOther; ++j) {
+        inOther = j != i && pieces[j].contains(p, tolerance);
+      }
+      if (!inOther)
+        accumulate(quality.approximationToOriginal, originalBvh.closest(p).distance, count);
+    }
+  }
+  quality.approximationToOriginal.mean /= static_cast<double>(std::max<std::size_t>(count, 1));
+  quality.samples += count;
+  return quality;
+}
+
+}  // namespace kaboum
