@@ -17,9 +17,11 @@
 #include "kaboum/collision/body.hpp"
 #include "kaboum/collision/robot_collision.hpp"
 #include "kaboum/core/error.hpp"
+#include "kaboum/geometry/mesh_analysis.hpp"
 #include "kaboum/geometry/triangle_bvh.hpp"
 #include "kaboum/io/mesh_io.hpp"
 #include "kaboum/kinematics/random_configuration.hpp"
+#include "mesh_cli.hpp"
 #include "verb.hpp"
 
 namespace kaboum::cli {
@@ -32,6 +34,7 @@ struct VerifyOptions {
   long samples = 100000;
   std::uint64_t seed = 1;
   double reachScale = 1.0;
+  std::string decompose;  // empty: one convex hull per mesh
   bool json = false;
 };
 
@@ -55,11 +58,18 @@ struct Subject {
   std::unique_ptr<CollisionBody> body;
   std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>> fclModel;
   std::unique_ptr<TriangleBvh> exact;  // for solid containment of false alarms
+  double epsilon = 0;                  // decomposition ε; 0 for a convex hull
 };
 
-Subject loadSubject(const std::string& path) {
-  Subject s{path, readMesh(path), nullptr, nullptr, nullptr};
-  const auto pieces = collision::boundingConvexPieces(s.mesh, path);
+Subject loadSubject(const std::string& path, const std::string& decompose) {
+  Subject s{path, readMesh(path), nullptr, nullptr, nullptr, 0.0};
+  collision::LinkPieceOptions pieceOptions;
+  if (!decompose.empty()) {
+    pieceOptions.decompose = true;
+    s.epsilon = parseEpsilon(decompose, boundingBoxDiagonal(s.mesh));
+    pieceOptions.decomposition.epsilon = s.epsilon;
+  }
+  const auto pieces = collision::boundingConvexPieces(s.mesh, path, pieceOptions);
   s.body = std::make_unique<CollisionBody>(pieces, path);
   s.fclModel = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
   std::vector<fcl::Vector3d> points(s.mesh.vertices.begin(), s.mesh.vertices.end());
@@ -91,11 +101,15 @@ int runVerify(const VerifyOptions& options) {
   if (options.reachScale <= 0) throw InputError("--reach-scale must be positive");
   const auto paths = options.meshes.empty() ? defaultMeshes() : options.meshes;
   std::vector<Subject> subjects;
-  for (const auto& path : paths) subjects.push_back(loadSubject(path));
+  std::size_t pieces = 0;
+  for (const auto& path : paths) {
+    subjects.push_back(loadSubject(path, options.decompose));
+    pieces += subjects.back().body->pieceCount();
+  }
 
   std::mt19937_64 rng(options.seed);
   long fclCollisions = 0, kaboumCollisions = 0, missed = 0, falseAlarms = 0, solidContacts = 0;
-  double worstFalseAlarm = 0;
+  double worstFalseAlarm = 0, worstEpsilonRatio = 0;
   std::string worstPair;
   double kaboumSeconds = 0, fclSeconds = 0;
   using Clock = std::chrono::steady_clock;
@@ -134,6 +148,10 @@ int runVerify(const VerifyOptions& options) {
       fcl::DistanceRequestd distanceRequest;
       fcl::DistanceResultd distanceResult;
       fcl::distance(&objectA, &objectB, distanceRequest, distanceResult);
+      if (a.epsilon > 0) {
+        worstEpsilonRatio =
+            std::max(worstEpsilonRatio, distanceResult.min_distance / (a.epsilon + b.epsilon));
+      }
       if (distanceResult.min_distance > worstFalseAlarm) {
         worstFalseAlarm = distanceResult.min_distance;
         worstPair = std::filesystem::path(a.path).filename().string() + " / " +
@@ -145,6 +163,8 @@ int runVerify(const VerifyOptions& options) {
   if (options.json) {
     nlohmann::json out = {{"samples", options.samples},
                           {"meshes", paths.size()},
+                          {"pieces", pieces},
+                          {"decompose", options.decompose.empty() ? "hull" : options.decompose},
                           {"seed", options.seed},
                           {"fcl_collisions", fclCollisions},
                           {"kaboum_collisions", kaboumCollisions},
@@ -153,12 +173,15 @@ int runVerify(const VerifyOptions& options) {
                           {"false_alarms", falseAlarms},
                           {"max_false_alarm_distance", worstFalseAlarm},
                           {"max_false_alarm_pair", worstPair},
+                          {"max_false_alarm_over_epsilon_sum", worstEpsilonRatio},
                           {"kaboum_ns_per_query", 1e9 * kaboumSeconds / n},
                           {"fcl_ns_per_query", 1e9 * fclSeconds / n}};
     std::cout << out.dump(2) << "\n";
   } else {
-    std::cout << "samples " << options.samples << " over " << paths.size() << " meshes (seed "
-              << options.seed << ")\n"
+    std::cout << "samples " << options.samples << " over " << paths.size() << " meshes, " << pieces
+              << " convex pieces ("
+              << (options.decompose.empty() ? "hulls" : "decomposition at " + options.decompose)
+              << "), seed " << options.seed << "\n"
               << "FCL (original triangles) collisions " << fclCollisions << "\n"
               << "kaboum (bounding convex pieces) collisions " << kaboumCollisions << "\n"
               << "missed collisions " << missed << "\n"
@@ -166,6 +189,10 @@ int runVerify(const VerifyOptions& options) {
               << "\n"
               << "false alarms " << falseAlarms << ", largest true distance " << worstFalseAlarm
               << (worstPair.empty() ? "" : " (" + worstPair + ")") << "\n"
+              << (options.decompose.empty()
+                      ? ""
+                      : "largest false-alarm distance / (epsilon_a + epsilon_b) " +
+                            std::to_string(worstEpsilonRatio) + "\n")
               << "ns per query: kaboum " << 1e9 * kaboumSeconds / n << ", FCL mesh "
               << 1e9 * fclSeconds / n << "\n";
   }
@@ -183,6 +210,9 @@ VerbRunner setupVerify(CLI::App& command) {
       .add_option("--reach-scale", options->reachScale,
                   "Centre distance up to this times the sum of the bounding radii")
       ->capture_default_str();
+  command.add_option("--decompose", options->decompose,
+                     "Bounding convex decomposition at this epsilon (a distance, or E% of each "
+                     "mesh's diagonal) instead of one convex hull per mesh");
   command.add_flag("--json", options->json, "Print the counts as JSON");
   return [options] { return runVerify(*options); };
 }

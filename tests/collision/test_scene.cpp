@@ -6,6 +6,7 @@
 #include "kaboum/collision/robot_collision.hpp"
 #include "kaboum/collision/scene.hpp"
 #include "kaboum/core/error.hpp"
+#include "kaboum/io/mesh_io.hpp"
 #include "kaboum/kinematics/urdf_loader.hpp"
 
 namespace kaboum::collision {
@@ -204,6 +205,35 @@ TEST(RobotCollisionModel, UnreadableLinkMeshIsAnInputError) {
   const std::string urdf = R"(<robot name="r"><link name="a"><collision><geometry>
       <mesh filename="missing.stl"/></geometry></collision></link></robot>)";
   EXPECT_THROW(RobotCollisionModel(parseUrdf(urdf, "r.urdf", "/nonexistent")), InputError);
+}
+
+// Link meshes through the bounding convex decomposition: several pieces whose union still holds
+// every vertex of the original mesh (in the link frame, after the collision origin).
+TEST(RobotCollisionModel, DecomposedLinksContainTheirMeshes) {
+  const std::string mesh = std::string(KABOUM_DATA_DIR) + "/meshes/kr5-wrist.stl";
+  const std::string urdf = R"(<robot name="r"><link name="wrist"><collision>
+      <origin xyz="0.1 0 0" rpy="0 0.5 0"/><geometry><mesh filename=")" +
+                           mesh + R"("/></geometry></collision></link></robot>)";
+  LinkPieceOptions options;
+  options.decompose = true;
+  options.decomposition.epsilonPercent = 2;
+  const RobotCollisionModel robot(parseUrdf(urdf, "r.urdf", "."), options);
+  ASSERT_EQ(robot.partCount(), 1U);
+  const CollisionBody& body = *robot.part(0).body;
+  EXPECT_GT(body.pieceCount(), 1U);
+  std::vector<ConvexHull> hulls;
+  for (std::size_t p = 0; p < body.pieceCount(); ++p)
+    hulls.push_back(convexHull(body.piece(p).vertices()));
+  const Pose origin = robot.model().links()[0].collisions[0].origin;
+  for (const Vec3& v : readMesh(mesh).vertices) {
+    const Vec3 inLink = origin * v;
+    const bool covered = std::any_of(hulls.begin(), hulls.end(), [&](const ConvexHull& hull) {
+      return std::all_of(hull.planes.begin(), hull.planes.end(), [&](const HullPlane& plane) {
+        return plane.normal.dot(inLink) <= plane.offset + 1e-9;
+      });
+    });
+    ASSERT_TRUE(covered) << v.transpose();
+  }
 }
 
 }  // namespace

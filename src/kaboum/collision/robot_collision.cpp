@@ -39,11 +39,22 @@ std::vector<Vec3> geodesicSphere() {
 }  // namespace
 
 std::vector<std::vector<Vec3>> boundingConvexPieces(const TriangleMesh& mesh,
-                                                    const std::string& what) {
-  return {convexHull(mesh.vertices, what).mesh.vertices};
+                                                    const std::string& what,
+                                                    const LinkPieceOptions& options) {
+  if (!options.decompose) return {convexHull(mesh.vertices, what).mesh.vertices};
+  std::vector<std::vector<Vec3>> pieces;
+  try {
+    for (const ConvexPiece& piece : decomposeBounding(mesh, options.decomposition).pieces) {
+      pieces.push_back(piece.vertices());
+    }
+  } catch (const InputError& error) {
+    throw InputError(what + ": " + error.what());
+  }
+  return pieces;
 }
 
-std::vector<std::vector<Vec3>> shapeConvexPieces(const CollisionShape& shape) {
+std::vector<std::vector<Vec3>> shapeConvexPieces(const CollisionShape& shape,
+                                                 const LinkPieceOptions& options) {
   std::vector<std::vector<Vec3>> pieces;
   switch (shape.kind) {
     case CollisionShape::Kind::Box: {
@@ -81,7 +92,7 @@ std::vector<std::vector<Vec3>> shapeConvexPieces(const CollisionShape& shape) {
     case CollisionShape::Kind::Mesh: {
       TriangleMesh mesh = readMesh(shape.meshPath);
       for (Vec3& v : mesh.vertices) v = v.cwiseProduct(shape.size);
-      pieces = boundingConvexPieces(mesh, shape.meshPath);
+      pieces = boundingConvexPieces(mesh, shape.meshPath, options);
       break;
     }
   }
@@ -91,13 +102,14 @@ std::vector<std::vector<Vec3>> shapeConvexPieces(const CollisionShape& shape) {
   return pieces;
 }
 
-RobotCollisionModel::RobotCollisionModel(RobotModel model) : model_(std::move(model)) {
+RobotCollisionModel::RobotCollisionModel(RobotModel model, const LinkPieceOptions& pieceOptions)
+    : model_(std::move(model)) {
   const auto& links = model_.links();
   std::vector<int> partOfLink(links.size(), -1);
   for (std::size_t l = 0; l < links.size(); ++l) {
     std::vector<std::vector<Vec3>> pieces;
     for (const CollisionShape& shape : links[l].collisions) {
-      for (auto& piece : shapeConvexPieces(shape)) pieces.push_back(std::move(piece));
+      for (auto& piece : shapeConvexPieces(shape, pieceOptions)) pieces.push_back(std::move(piece));
     }
     if (pieces.empty()) continue;
     partOfLink[l] = static_cast<int>(parts_.size());

@@ -10,26 +10,36 @@
 #include "kaboum/collision/body.hpp"
 #include "kaboum/collision/collision_filter.hpp"
 #include "kaboum/collision/scene.hpp"
+#include "kaboum/geometry/convex_decomposition.hpp"
 #include "kaboum/kinematics/robot_model.hpp"
 
 namespace kaboum::collision {
 
-// The convex pieces that bound a link mesh. For now one convex hull per mesh; the bounding convex
-// decomposition (§4.4) replaces it here.
+// How link meshes become convex pieces: one convex hull each (fast to build, loose for concave
+// links), or the bounding convex decomposition of §4.4 (seconds per link, within ε).
+struct LinkPieceOptions {
+  bool decompose = false;
+  DecompositionOptions decomposition;  // used when `decompose`
+};
+
+// The convex pieces that bound a link mesh (their union contains it). Throws InputError naming
+// `what` for a mesh without volume.
 std::vector<std::vector<Vec3>> boundingConvexPieces(const TriangleMesh& mesh,
-                                                    const std::string& what);
+                                                    const std::string& what,
+                                                    const LinkPieceOptions& options = {});
 
 // Vertices of a polytope containing a URDF collision shape, in the link frame (the shape's origin
 // applied): a box's corners, a cylinder's circumscribed 16-sided prism, a sphere's circumscribed
 // 42-vertex geodesic polytope, a mesh's bounding convex pieces (read from its file).
-std::vector<std::vector<Vec3>> shapeConvexPieces(const CollisionShape& shape);
+std::vector<std::vector<Vec3>> shapeConvexPieces(const CollisionShape& shape,
+                                                 const LinkPieceOptions& options = {});
 
 class RobotCollisionModel {
  public:
   // One part per link with collision geometry. Parts of a link and of its nearest ancestor with
   // geometry are not checked against each other (adjacent links). Throws InputError for
   // unreadable or degenerate link geometry.
-  explicit RobotCollisionModel(RobotModel model);
+  explicit RobotCollisionModel(RobotModel model, const LinkPieceOptions& pieces = {});
 
   struct Part {
     BodyPtr body;

@@ -1,5 +1,7 @@
 #include "kaboum/collision/scene.hpp"
 
+#include <array>
+
 namespace kaboum::collision {
 
 std::size_t CollisionScene::add(BodyPtr body, const Pose& pose, std::string name) {
@@ -42,16 +44,41 @@ void CollisionScene::rebuild() {
 std::optional<std::size_t> CollisionScene::firstCollision(const CollisionBody& body,
                                                           const Pose& pose, double margin,
                                                           std::optional<std::size_t> ignore) const {
-  if (body.pieceCount() > 1 &&
-      !tree_.anyOverlapping(transformedAabb(body.bounds().box, pose).inflated(margin))) {
-    return std::nullopt;
+  if (body.pieceCount() == 1) {
+    const PieceBounds& bounds = body.pieceBounds(0);
+    return firstWithin(TransformedSupport(body.piece(0), pose), transformedAabb(bounds.box, pose),
+                       pose * bounds.centre, bounds.radius, margin, ignore);
   }
+  // One tree query for the whole body; its pieces then test only those candidates.
+  std::array<std::uint32_t, kMaxCandidates> candidates{};
+  std::size_t count = 0;
+  const bool complete = tree_.forEachOverlapping(
+      transformedAabb(body.bounds().box, pose).inflated(margin), [&](std::uint32_t slot) {
+        if (slots_[slot].object == ignore) return true;
+        candidates[count++] = slot;
+        return count < candidates.size();
+      });
+  if (complete && count == 0) return std::nullopt;
   for (std::size_t p = 0; p < body.pieceCount(); ++p) {
     const PieceBounds& bounds = body.pieceBounds(p);
-    const auto hit =
-        firstWithin(TransformedSupport(body.piece(p), pose), transformedAabb(bounds.box, pose),
-                    pose * bounds.centre, bounds.radius, margin, ignore);
-    if (hit) return hit;
+    const TransformedSupport piece(body.piece(p), pose);
+    const Aabb box = transformedAabb(bounds.box, pose).inflated(margin);
+    const Vec3 centre = pose * bounds.centre;
+    if (!complete) {  // more candidates than the buffer holds: query per piece
+      if (auto hit = firstWithin(piece, box, centre, bounds.radius, margin, ignore)) return hit;
+      continue;
+    }
+    for (std::size_t c = 0; c < count; ++c) {
+      const Slot& slot = slots_[candidates[c]];
+      const Object& object = objects_[slot.object];
+      if (slotBoxes_[candidates[c]].overlaps(box) &&
+          spheresWithin(centre, bounds.radius, slot.centre,
+                        object.body->pieceBounds(slot.piece).radius, margin) &&
+          intersects(piece, TransformedSupport(object.body->piece(slot.piece), object.pose),
+                     margin)) {
+        return slot.object;
+      }
+    }
   }
   return std::nullopt;
 }

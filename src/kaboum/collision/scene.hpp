@@ -72,6 +72,7 @@ class CollisionScene {
     Vec3 centre{0, 0, 0};  // world centre of the piece's bounding sphere
   };
   void rebuild();
+  static constexpr std::size_t kMaxCandidates = 64;  // broad-phase hits buffered per body query
 
   std::vector<Object> objects_;
   std::vector<Slot> slots_;
