@@ -209,6 +209,44 @@ nlohmann::json sideBySide(const RobotCollisionModel& robot, const CollisionScene
   return figures;
 }
 
+// Whether a link moves with some joint (else it is part of the fixed base).
+bool linkMoves(const RobotModel& model, int link) {
+  for (int joint = model.links()[static_cast<std::size_t>(link)].parentJoint; joint >= 0;
+       joint = model
+                   .links()[static_cast<std::size_t>(
+                       model.joints()[static_cast<std::size_t>(joint)].parentLink)]
+                   .parentJoint) {
+    if (model.joints()[static_cast<std::size_t>(joint)].movable()) return true;
+  }
+  return false;
+}
+
+// `options.obstacles` random obstacles in `region`, skipping those that touch the fixed base
+// (they would make every configuration collide).
+CollisionScene obstaclesAwayFromTheBase(const RobotCollisionModel& robot,
+                                        const collision::Aabb& region,
+                                        const FullRobotBenchOptions& options) {
+  std::vector<Pose> home(robot.model().links().size());
+  robot.model().linkPoses(std::vector<double>(static_cast<std::size_t>(robot.model().dof()), 0.0),
+                          home);
+  const CollisionScene candidates =
+      collision::randomObstacleScene(region, 4 * options.obstacles, 12, 0.04, options.seed);
+  CollisionScene scene;
+  for (std::size_t o = 0;
+       o < candidates.size() && static_cast<int>(scene.size()) < options.obstacles; ++o) {
+    bool touchesBase = false;
+    for (std::size_t i = 0; i < robot.partCount(); ++i) {
+      touchesBase |= !linkMoves(robot.model(), robot.part(i).link) &&
+                     collision::bodiesCollide(*robot.part(i).body, robot.partPose(i, home),
+                                              candidates.body(o), candidates.pose(o), 0.0);
+    }
+    if (!touchesBase) {
+      scene.add(candidates.sharedBody(o), candidates.pose(o), candidates.name(o));
+    }
+  }
+  return scene;
+}
+
 }  // namespace
 
 nlohmann::json runFullRobotBench(const FullRobotBenchOptions& options) {
@@ -241,8 +279,7 @@ nlohmann::json runFullRobotBench(const FullRobotBenchOptions& options) {
       region = region.merged({pose.translation(), pose.translation()});
     }
   }
-  const CollisionScene scene =
-      collision::randomObstacleScene(region, options.obstacles, 12, 0.04, options.seed);
+  const CollisionScene scene = obstaclesAwayFromTheBase(hulls, region, options);
 
   std::vector<std::vector<Pose>> queries(static_cast<std::size_t>(options.queries), poses);
   for (auto& query : queries) model.linkPoses(randomQ(model, rng), query);

@@ -24,6 +24,9 @@ class CollisionScene {
   [[nodiscard]] const CollisionBody& body(std::size_t object) const {
     return *objects_[object].body;
   }
+  [[nodiscard]] const BodyPtr& sharedBody(std::size_t object) const {
+    return objects_[object].body;
+  }
   [[nodiscard]] const Pose& pose(std::size_t object) const { return objects_[object].pose; }
   [[nodiscard]] const std::string& name(std::size_t object) const { return objects_[object].name; }
   [[nodiscard]] bool active(std::size_t object) const { return objects_[object].active; }
