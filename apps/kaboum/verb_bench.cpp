@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "bench_full_robot.hpp"
 #include "kaboum/collision/convex_polytope.hpp"
 #include "kaboum/collision/gjk.hpp"
 #include "kaboum/collision/minkowski_reference.hpp"
@@ -354,8 +355,23 @@ struct CollisionSection {
   nlohmann::json (*run)(const CollisionBenchOptions&);
 };
 
+// The full-robot section (bench_full_robot.hpp) with this verb's seed, runs and verbosity.
+nlohmann::json runRobotSection(const CollisionBenchOptions& options) {
+  FullRobotBenchOptions robot;
+  robot.seed = options.seed;
+  robot.runs = options.runs;
+  robot.quiet = options.quiet;
+  nlohmann::json section = runFullRobotBench(robot);
+  if (!options.json) printFullRobotBench(section, std::cout);
+  return section;
+}
+
 const CollisionSection kCollisionSections[] = {
     {"pairs", "convex polytope pairs: boolean and distance, per vertex count", runPairSection},
+    {"robot",
+     "full robot (KR5 hulls and bounding convex sets) vs 50 convex obstacles, FCL DynamicAABBTree "
+     "side by side, Figure 4.9 distributions",
+     runRobotSection},
 };
 
 int runCollisionBench(const CollisionBenchOptions& options) {

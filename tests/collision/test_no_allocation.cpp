@@ -1,15 +1,21 @@
 // The collision module's hot paths allocate nothing per call (GJK boolean and distance, warm and
-// cold). Counts global operator new calls around each call; the one replacement of operator new
-// in test_collision lives here — add further collision hot paths to this file.
+// cold; robot, scene, predicate and swept checks). Counts global operator new calls around each
+// call; the one replacement of operator new in test_collision lives here — add further collision
+// hot paths to this file.
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <cstdlib>
 #include <new>
 
+#include "collision_test_support.hpp"
 #include "kaboum/collision/convex_polytope.hpp"
 #include "kaboum/collision/gjk.hpp"
 #include "kaboum/collision/polytope_pairs.hpp"
+#include "kaboum/collision/predicates.hpp"
+#include "kaboum/collision/scene_generator.hpp"
+#include "kaboum/collision/swept.hpp"
+#include "kaboum/kinematics/urdf_loader.hpp"
 
 // The replacements below pair malloc/free themselves; GCC cannot see that through inlining.
 #pragma GCC diagnostic ignored "-Wmismatched-new-delete"
@@ -63,6 +69,35 @@ TEST(NoAllocation, GjkQueries) {
     EXPECT_EQ(counted, 0) << "N=" << n;
     EXPECT_GT(hits, 0);
   }
+}
+
+TEST(NoAllocation, CollisionHotPaths) {
+  RobotCollisionModel robot(loadUrdf(test::kKr5));
+  const CollisionScene scene =
+      randomObstacleScene(Aabb{Vec3(-0.8, -1.2, -0.8), Vec3(0.8, 0.4, 0.8)}, 50, 12, 0.04, 3);
+  std::vector<Pose> poses(robot.model().links().size());
+  const std::vector<double> qa{0.1, 0.2, -0.3, 0.4, 0.5, 0.6}, qb{0.9, -0.2, 0.3, 1.4, -0.5, 0.1};
+  robot.model().linkPoses(qa, poses);
+  const ConvexContainer container(test::boxCorners(Vec3::Constant(-1), Vec3::Constant(1)));
+  RobotSweep sweep(robot);
+  EXPECT_GT(allocationsDuring([&] { sweep.sweep(qa, qb, 0.001); }), 0);  // counter works
+  bool any = false;
+  EXPECT_EQ(
+      allocationsDuring([&] { any |= robot.firstSceneCollision(poses, scene, 0).has_value(); }), 0);
+  EXPECT_EQ(allocationsDuring([&] { any |= robot.selfCollides(poses, 0); }), 0);
+  EXPECT_EQ(allocationsDuring([&] {
+              any |= bodiesCollide(scene.body(0), scene.pose(0), scene.body(1), scene.pose(1), 0);
+            }),
+            0);
+  EXPECT_EQ(allocationsDuring([&] {
+              any |= isInside(scene.body(0), scene.pose(0), container, Pose::Identity());
+            }),
+            0);
+  EXPECT_EQ(allocationsDuring([&] { any |= isOnSupportSurface(scene, 0, 0.01, 0.001); }), 0);
+  EXPECT_EQ(allocationsDuring(
+                [&] { any |= sweep.firstSceneCollision(qa, qb, scene, 0, 0.001).has_value(); }),
+            0);
+  (void)any;
 }
 
 }  // namespace

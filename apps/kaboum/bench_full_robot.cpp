@@ -1,0 +1,368 @@
+#include "bench_full_robot.hpp"
+
+#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
+#include <fcl/broadphase/default_broadphase_callbacks.h>
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/shape/convex.h>
+#include <fcl/math/bv/OBBRSS.h>
+
+#include <algorithm>
+#include <chrono>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <random>
+
+#include "kaboum/collision/robot_collision.hpp"
+#include "kaboum/collision/scene_generator.hpp"
+#include "kaboum/core/error.hpp"
+#include "kaboum/geometry/convex_hull.hpp"
+#include "kaboum/io/mesh_io.hpp"
+#include "kaboum/kinematics/random_configuration.hpp"
+#include "kaboum/kinematics/urdf_loader.hpp"
+
+namespace kaboum::cli {
+namespace {
+
+using collision::CollisionScene;
+using collision::RobotCollisionModel;
+using Clock = std::chrono::steady_clock;
+
+nlohmann::json stats(std::vector<double> ns) {
+  std::sort(ns.begin(), ns.end());
+  double sum = 0;
+  for (double t : ns) sum += t;
+  const auto at = [&](double fraction) {
+    return ns[std::min(ns.size() - 1,
+                       static_cast<std::size_t>(fraction * static_cast<double>(ns.size())))];
+  };
+  return {{"min", ns.front()},
+          {"mean", sum / static_cast<double>(ns.size())},
+          {"median", at(0.5)},
+          {"p99", at(0.99)},
+          {"max", ns.back()}};
+}
+
+std::shared_ptr<fcl::Convexd> fclConvex(std::span<const Vec3> points) {
+  const ConvexHull hull = convexHull(points, "convex piece");
+  auto vertices = std::make_shared<std::vector<fcl::Vector3d>>(hull.mesh.vertices.begin(),
+                                                               hull.mesh.vertices.end());
+  auto faces = std::make_shared<std::vector<int>>();
+  for (const Triangle& t : hull.mesh.triangles) {
+    faces->insert(faces->end(),
+                  {3, static_cast<int>(t[0]), static_cast<int>(t[1]), static_cast<int>(t[2])});
+  }
+  return std::make_shared<fcl::Convexd>(vertices, static_cast<int>(hull.mesh.triangles.size()),
+                                        faces);
+}
+
+std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>> fclMesh(const TriangleMesh& mesh) {
+  auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+  std::vector<fcl::Vector3d> points(mesh.vertices.begin(), mesh.vertices.end());
+  std::vector<fcl::Triangle> triangles;
+  for (const Triangle& t : mesh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
+  model->beginModel();
+  model->addSubModel(points, triangles);
+  model->endModel();
+  return model;
+}
+
+// The scene's obstacles in an FCL DynamicAABBTree manager, as convexes or as hull meshes.
+struct FclObstacles {
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;
+  fcl::DynamicAABBTreeCollisionManagerd manager;
+
+  FclObstacles(const CollisionScene& scene, bool asMeshes) {
+    for (std::size_t o = 0; o < scene.size(); ++o) {
+      for (std::size_t p = 0; p < scene.body(o).pieceCount(); ++p) {
+        const auto& vertices = scene.body(o).piece(p).vertices();
+        std::shared_ptr<fcl::CollisionGeometryd> geometry;
+        if (asMeshes) {
+          geometry = fclMesh(convexHull(vertices).mesh);
+        } else {
+          geometry = fclConvex(vertices);
+        }
+        objects.push_back(std::make_unique<fcl::CollisionObjectd>(geometry, scene.pose(o)));
+        manager.registerObject(objects.back().get());
+      }
+    }
+    manager.setup();
+  }
+};
+
+// A robot as FCL objects: one per convex piece, or one per original link mesh.
+struct FclRobot {
+  struct Item {
+    std::unique_ptr<fcl::CollisionObjectd> object;
+    int link;
+  };
+  std::vector<Item> items;
+
+  static FclRobot pieces(const RobotCollisionModel& robot) {
+    FclRobot result;
+    for (std::size_t i = 0; i < robot.partCount(); ++i) {
+      const auto& body = *robot.part(i).body;
+      for (std::size_t p = 0; p < body.pieceCount(); ++p) {
+        result.items.push_back({std::make_unique<fcl::CollisionObjectd>(
+                                    fclConvex(body.piece(p).vertices()), Pose::Identity()),
+                                robot.part(i).link});
+      }
+    }
+    return result;
+  }
+
+  static FclRobot originalMeshes(const RobotModel& model) {
+    FclRobot result;
+    for (std::size_t l = 0; l < model.links().size(); ++l) {
+      for (const CollisionShape& shape : model.links()[l].collisions) {
+        if (shape.kind != CollisionShape::Kind::Mesh) {
+          throw InputError(model.name() + ": original-mesh benchmark needs mesh collision shapes");
+        }
+        TriangleMesh mesh = readMesh(shape.meshPath);
+        for (Vec3& v : mesh.vertices) v = shape.origin * v.cwiseProduct(shape.size);
+        result.items.push_back(
+            {std::make_unique<fcl::CollisionObjectd>(fclMesh(mesh), Pose::Identity()),
+             static_cast<int>(l)});
+      }
+    }
+    return result;
+  }
+
+  bool collides(std::span<const Pose> linkPoses, fcl::DynamicAABBTreeCollisionManagerd& scene) {
+    fcl::DefaultCollisionData<double> data;
+    for (Item& item : items) {
+      item.object->setTransform(linkPoses[static_cast<std::size_t>(item.link)]);
+      item.object->computeAABB();
+      scene.collide(item.object.get(), &data, fcl::DefaultCollisionFunction<double>);
+      if (data.result.isCollision()) return true;
+    }
+    return false;
+  }
+};
+
+std::vector<double> randomQ(const RobotModel& model, std::mt19937_64& rng) {
+  std::vector<double> q(static_cast<std::size_t>(model.dof()));
+  for (int v = 0; v < model.dof(); ++v) {
+    const Joint& joint = model.variableJoint(v);
+    q[static_cast<std::size_t>(v)] = joint.lower + uniformUnit(rng) * (joint.upper - joint.lower);
+  }
+  return q;
+}
+
+// Per-query medians over `runs` passes of check(i) for every query i, in ns; `answers` gets
+// check's results from the first pass.
+template <class Check>
+std::vector<double> medianTimes(std::size_t count, int runs, std::vector<char>& answers,
+                                Check&& check) {
+  std::vector<std::vector<double>> times(count);
+  answers.assign(count, 0);
+  for (int run = 0; run < runs; ++run) {
+    for (std::size_t i = 0; i < count; ++i) {
+      const auto start = Clock::now();
+      const bool answer = check(i);
+      times[i].push_back(std::chrono::duration<double, std::nano>(Clock::now() - start).count());
+      if (run == 0) answers[i] = answer;
+    }
+  }
+  std::vector<double> medians;
+  for (auto& t : times) {
+    std::nth_element(t.begin(), t.begin() + runs / 2, t.end());
+    medians.push_back(t[static_cast<std::size_t>(runs / 2)]);
+  }
+  return medians;
+}
+
+// One way of modelling the robot: kaboum on its convex pieces vs FCL on the same pieces.
+nlohmann::json sideBySide(const RobotCollisionModel& robot, const CollisionScene& scene,
+                          const std::vector<std::vector<Pose>>& poses, int runs) {
+  FclObstacles fclScene(scene, false);
+  FclRobot fclPieces = FclRobot::pieces(robot);
+  std::size_t pieceCount = 0, vertexCount = 0;
+  for (std::size_t i = 0; i < robot.partCount(); ++i) {
+    const auto& body = *robot.part(i).body;
+    pieceCount += body.pieceCount();
+    for (std::size_t p = 0; p < body.pieceCount(); ++p) vertexCount += body.piece(p).vertexCount();
+  }
+  std::vector<char> ours, theirs;
+  const auto kaboumNs = medianTimes(poses.size(), runs, ours, [&](std::size_t i) {
+    return robot.firstSceneCollision(poses[i], scene, 0.0).has_value();
+  });
+  const auto fclNs = medianTimes(poses.size(), runs, theirs, [&](std::size_t i) {
+    return fclPieces.collides(poses[i], fclScene.manager);
+  });
+  long collisions = 0, disagreements = 0;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    collisions += ours[i];
+    disagreements += ours[i] != theirs[i];
+  }
+  nlohmann::json figures = {
+      {"pieces", pieceCount},
+      {"vertices", vertexCount},
+      {"collision_fraction", static_cast<double>(collisions) / static_cast<double>(poses.size())},
+      {"disagreements", disagreements},
+      {"kaboum_ns", stats(kaboumNs)},
+      {"fcl_dynamic_aabb_tree_ns", stats(fclNs)}};
+  figures["fcl_over_kaboum_mean"] = figures["fcl_dynamic_aabb_tree_ns"]["mean"].get<double>() /
+                                    figures["kaboum_ns"]["mean"].get<double>();
+  figures["fcl_over_kaboum_median"] = figures["fcl_dynamic_aabb_tree_ns"]["median"].get<double>() /
+                                      figures["kaboum_ns"]["median"].get<double>();
+  return figures;
+}
+
+// Whether a link moves with some joint (else it is part of the fixed base).
+bool linkMoves(const RobotModel& model, int link) {
+  for (int joint = model.links()[static_cast<std::size_t>(link)].parentJoint; joint >= 0;
+       joint = model
+                   .links()[static_cast<std::size_t>(
+                       model.joints()[static_cast<std::size_t>(joint)].parentLink)]
+                   .parentJoint) {
+    if (model.joints()[static_cast<std::size_t>(joint)].movable()) return true;
+  }
+  return false;
+}
+
+// `options.obstacles` random obstacles in `region`, skipping those that touch the fixed base
+// (they would make every configuration collide).
+CollisionScene obstaclesAwayFromTheBase(const RobotCollisionModel& robot,
+                                        const collision::Aabb& region,
+                                        const FullRobotBenchOptions& options) {
+  std::vector<Pose> home(robot.model().links().size());
+  robot.model().linkPoses(std::vector<double>(static_cast<std::size_t>(robot.model().dof()), 0.0),
+                          home);
+  const CollisionScene candidates =
+      collision::randomObstacleScene(region, 4 * options.obstacles, 12, 0.04, options.seed);
+  CollisionScene scene;
+  for (std::size_t o = 0;
+       o < candidates.size() && static_cast<int>(scene.size()) < options.obstacles; ++o) {
+    bool touchesBase = false;
+    for (std::size_t i = 0; i < robot.partCount(); ++i) {
+      touchesBase |= !linkMoves(robot.model(), robot.part(i).link) &&
+                     collision::bodiesCollide(*robot.part(i).body, robot.partPose(i, home),
+                                              candidates.body(o), candidates.pose(o), 0.0);
+    }
+    if (!touchesBase) {
+      scene.add(candidates.sharedBody(o), candidates.pose(o), candidates.name(o));
+    }
+  }
+  return scene;
+}
+
+}  // namespace
+
+nlohmann::json runFullRobotBench(const FullRobotBenchOptions& options) {
+  if (options.obstacles <= 0 || options.queries <= 0 || options.motions <= 0 ||
+      options.motionSteps <= 0 || options.runs <= 0 || options.decomposePercent <= 0) {
+    throw InputError(
+        "full-robot bench: obstacles, queries, motions, steps, runs and epsilon must be positive");
+  }
+  const auto progress = [&](const std::string& message) {
+    if (!options.quiet) std::cerr << "robot: " << message << "\n";
+  };
+  const RobotModel model = loadUrdf(options.urdf);
+  progress("convex hulls and bounding convex decomposition of the links...");
+  const RobotCollisionModel hulls(model);
+  collision::LinkPieceOptions decomposition;
+  decomposition.decompose = true;
+  decomposition.decomposition.epsilonPercent = options.decomposePercent;
+  const auto decomposeStart = Clock::now();
+  const RobotCollisionModel bounded(model, decomposition);
+  const double decomposeSeconds =
+      std::chrono::duration<double>(Clock::now() - decomposeStart).count();
+
+  // Obstacles fill the box swept by the link origins over random configurations.
+  std::mt19937_64 rng(options.seed);
+  std::vector<Pose> poses(model.links().size());
+  collision::Aabb region{Vec3::Constant(1e300), Vec3::Constant(-1e300)};
+  for (int i = 0; i < 200; ++i) {
+    model.linkPoses(randomQ(model, rng), poses);
+    for (const Pose& pose : poses) {
+      region = region.merged({pose.translation(), pose.translation()});
+    }
+  }
+  const CollisionScene scene = obstaclesAwayFromTheBase(hulls, region, options);
+
+  std::vector<std::vector<Pose>> queries(static_cast<std::size_t>(options.queries), poses);
+  for (auto& query : queries) model.linkPoses(randomQ(model, rng), query);
+  progress("side by side on " + std::to_string(options.queries) + " random configurations...");
+  nlohmann::json figures = {{"robot", model.name()},
+                            {"obstacles", options.obstacles},
+                            {"queries", options.queries},
+                            {"runs", options.runs},
+                            {"decomposition_seconds", decomposeSeconds},
+                            {"decomposition_epsilon_percent", options.decomposePercent}};
+  figures["bounding_convex_sets"] = sideBySide(bounded, scene, queries, options.runs);
+  figures["convex_hulls"] = sideBySide(hulls, scene, queries, options.runs);
+
+  // Figure 4.9: per-check times along random straight motions.
+  progress("Figure 4.9 distributions along " + std::to_string(options.motions) + " motions...");
+  std::vector<std::vector<Pose>> along;
+  std::vector<double> q(static_cast<std::size_t>(model.dof()));
+  for (int m = 0; m < options.motions; ++m) {
+    const auto qa = randomQ(model, rng), qb = randomQ(model, rng);
+    for (int s = 0; s <= options.motionSteps; ++s) {
+      for (std::size_t v = 0; v < q.size(); ++v) {
+        q[v] = qa[v] + s * (qb[v] - qa[v]) / options.motionSteps;
+      }
+      model.linkPoses(q, poses);
+      along.push_back(poses);
+    }
+  }
+  FclObstacles fclMeshScene(scene, true);
+  FclRobot fclOriginal = FclRobot::originalMeshes(model);
+  std::vector<char> answers;
+  const auto check = [&](const RobotCollisionModel& robot) {
+    return
+        [&](std::size_t i) { return robot.firstSceneCollision(along[i], scene, 0.0).has_value(); };
+  };
+  figures["motion_checks"] = along.size();
+  figures["figure_4_9_ns"] = {
+      {"original_meshes_fcl", stats(medianTimes(along.size(), options.runs, answers,
+                                                [&](std::size_t i) {
+                                                  return fclOriginal.collides(along[i],
+                                                                              fclMeshScene.manager);
+                                                }))},
+      {"convex_hulls_kaboum",
+       stats(medianTimes(along.size(), options.runs, answers, check(hulls)))},
+      {"bounding_convex_sets_kaboum",
+       stats(medianTimes(along.size(), options.runs, answers, check(bounded)))}};
+  return figures;
+}
+
+void printFullRobotBench(const nlohmann::json& figures, std::ostream& out) {
+  const auto header = [&](const std::string& title) {
+    out << std::left << std::setw(36) << title << std::right;
+    for (const char* key : {"min", "mean", "median", "p99", "max"}) out << std::setw(9) << key;
+    out << "\n";
+  };
+  const auto row = [&](const std::string& name, const nlohmann::json& s) {
+    out << std::left << std::setw(36) << name << std::right << std::fixed << std::setprecision(0);
+    for (const char* key : {"min", "mean", "median", "p99", "max"}) {
+      out << std::setw(9) << s[key].get<double>();
+    }
+    out << "\n";
+  };
+  out << "full robot " << figures["robot"].get<std::string>() << " vs "
+      << figures["obstacles"].get<int>() << " convex obstacles, " << figures["queries"].get<int>()
+      << " random configurations, median of " << figures["runs"].get<int>()
+      << " runs per query (ns per check)\n";
+  for (const char* variant : {"bounding_convex_sets", "convex_hulls"}) {
+    const auto& v = figures[variant];
+    out << std::fixed << std::setprecision(1) << variant << ": " << v["pieces"].get<int>()
+        << " pieces, " << v["vertices"].get<int>() << " vertices, "
+        << 100 * v["collision_fraction"].get<double>() << "% colliding, "
+        << v["disagreements"].get<int>() << " disagreements with FCL\n";
+    header("");
+    row("  kaboum", v["kaboum_ns"]);
+    row("  FCL DynamicAABBTree (libccd)", v["fcl_dynamic_aabb_tree_ns"]);
+    out << std::setprecision(1) << "  FCL / kaboum: mean "
+        << v["fcl_over_kaboum_mean"].get<double>() << "x, median "
+        << v["fcl_over_kaboum_median"].get<double>() << "x\n";
+  }
+  out << "Figure 4.9, " << figures["motion_checks"].get<int>() << " checks along random motions:\n";
+  header("");
+  row("  original meshes (FCL OBBRSS)", figures["figure_4_9_ns"]["original_meshes_fcl"]);
+  row("  convex hulls (kaboum)", figures["figure_4_9_ns"]["convex_hulls_kaboum"]);
+  row("  bounding convex sets (kaboum)", figures["figure_4_9_ns"]["bounding_convex_sets_kaboum"]);
+}
+
+}  // namespace kaboum::cli

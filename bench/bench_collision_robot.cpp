@@ -1,0 +1,105 @@
+// Full-robot collision checks (issue 3): the KR5's convex pieces against 50 random convex
+// obstacles, self-collision, swept motions and isInside. The side-by-side comparison with FCL is
+// `kaboum bench collision --robot` (apps/kaboum/bench_full_robot.cpp).
+#include <benchmark/benchmark.h>
+
+#include <random>
+
+#include "kaboum/collision/predicates.hpp"
+#include "kaboum/collision/scene_generator.hpp"
+#include "kaboum/collision/swept.hpp"
+#include "kaboum/kinematics/random_configuration.hpp"
+#include "kaboum/kinematics/urdf_loader.hpp"
+
+namespace {
+
+using namespace kaboum;
+using namespace kaboum::collision;
+
+const std::string kKr5 = "/usr/share/doc/dart/data/urdf/KR5/KR5 sixx R650.urdf";
+
+struct Kr5World {
+  RobotCollisionModel robot{loadUrdf(kKr5)};
+  CollisionScene scene =
+      randomObstacleScene(Aabb{Vec3(-0.8, -1.2, -0.8), Vec3(0.8, 0.4, 0.8)}, 50, 12, 0.04, 1);
+  std::vector<std::vector<double>> configurations;
+  std::vector<std::vector<Pose>> poses;
+
+  Kr5World() {
+    std::mt19937_64 rng(1);
+    for (int i = 0; i < 1024; ++i) {
+      std::vector<double> q(6);
+      for (int v = 0; v < 6; ++v) {
+        const Joint& joint = robot.model().variableJoint(v);
+        q[static_cast<std::size_t>(v)] =
+            joint.lower + uniformUnit(rng) * (joint.upper - joint.lower);
+      }
+      std::vector<Pose> p(robot.model().links().size());
+      robot.model().linkPoses(q, p);
+      configurations.push_back(q);
+      poses.push_back(p);
+    }
+    std::vector<Pose> home(robot.model().links().size());
+    robot.model().linkPoses(std::vector<double>(6, 0.0), home);
+    robot.allowPairsCollidingAt(home);
+  }
+};
+
+const Kr5World& world() {
+  static const Kr5World instance;
+  return instance;
+}
+
+void BM_Kr5SceneCheck(benchmark::State& state) {
+  const Kr5World& w = world();
+  std::size_t i = 0, hits = 0;
+  for (auto _ : state) {
+    hits += w.robot.firstSceneCollision(w.poses[i++ % w.poses.size()], w.scene, 0.0).has_value();
+  }
+  state.counters["colliding"] = static_cast<double>(hits) / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_Kr5SceneCheck);
+
+void BM_Kr5SelfCheck(benchmark::State& state) {
+  const Kr5World& w = world();
+  std::size_t i = 0;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(w.robot.selfCollides(w.poses[i++ % w.poses.size()], 0.0));
+}
+BENCHMARK(BM_Kr5SelfCheck);
+
+// Straight motions between consecutive random configurations, swept at ε = 1 mm (range(0) µm).
+void BM_Kr5SweptMotion(benchmark::State& state) {
+  const Kr5World& w = world();
+  RobotSweep sweep(w.robot);
+  const double epsilon = static_cast<double>(state.range(0)) * 1e-6;
+  std::size_t i = 0, samples = 0;
+  for (auto _ : state) {
+    const auto& qa = w.configurations[i % w.configurations.size()];
+    const auto& qb = w.configurations[(i + 1) % w.configurations.size()];
+    benchmark::DoNotOptimize(sweep.firstSceneCollision(qa, qb, w.scene, 0.0, epsilon));
+    samples += sweep.sampleCount();
+    ++i;
+  }
+  state.counters["fk_samples"] =
+      static_cast<double>(samples) / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_Kr5SweptMotion)->Arg(1000)->Arg(4000);
+
+void BM_IsInside(benchmark::State& state) {
+  const Kr5World& w = world();
+  const ConvexContainer container(
+      std::vector<Vec3>{Vec3(-1, -1, -1), Vec3(1, -1, -1), Vec3(-1, 1, -1), Vec3(1, 1, -1),
+                        Vec3(-1, -1, 1), Vec3(1, -1, 1), Vec3(-1, 1, 1), Vec3(1, 1, 1)});
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::size_t o = i++ % w.scene.size();
+    benchmark::DoNotOptimize(
+        isInside(w.scene.body(o), w.scene.pose(o), container, Pose::Identity()));
+  }
+}
+BENCHMARK(BM_IsInside);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,41 @@
+#include "kaboum/collision/predicates.hpp"
+
+#include <limits>
+
+namespace kaboum::collision {
+
+bool isInside(const CollisionBody& object, const Pose& objectPose, const ConvexContainer& container,
+              const Pose& containerPose) {
+  const Pose toContainer = containerPose.inverse() * objectPose;
+  for (std::size_t p = 0; p < object.pieceCount(); ++p) {
+    for (const Vec3& v : object.piece(p).vertices()) {
+      const Vec3 local = toContainer * v;
+      for (const HullPlane& plane : container.planes()) {
+        if (plane.normal.dot(local) > plane.offset) return false;
+      }
+    }
+  }
+  return true;
+}
+
+bool isOnSupportSurface(const CollisionScene& scene, std::size_t object, double drop, double band) {
+  const CollisionBody& body = scene.body(object);
+  const Pose& pose = scene.pose(object);
+  if (scene.firstCollision(body, pose, 0.0, object)) return false;
+  double lowest = std::numeric_limits<double>::infinity();
+  for (std::size_t p = 0; p < body.pieceCount(); ++p) {
+    for (const Vec3& v : body.piece(p).vertices()) lowest = std::min(lowest, (pose * v).z());
+  }
+  for (std::size_t p = 0; p < body.pieceCount(); ++p) {
+    for (const Vec3& v : body.piece(p).vertices()) {
+      const Vec3 top = pose * v;
+      if (top.z() > lowest + band) continue;
+      const SegmentSupport probe{top, top - Vec3(0, 0, drop)};
+      const Aabb box{probe.b, probe.a};
+      if (!scene.firstWithin(probe, box, probe.center(), 0.5 * drop, 0.0, object)) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace kaboum::collision

@@ -1,0 +1,202 @@
+#include "kaboum/collision/robot_collision.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "kaboum/core/error.hpp"
+#include "kaboum/geometry/convex_hull.hpp"
+#include "kaboum/io/mesh_io.hpp"
+
+namespace kaboum::collision {
+namespace {
+
+constexpr int kCylinderSides = 16;
+
+// The 42 vertices of an icosahedron with every edge split at its midpoint, on the unit sphere.
+std::vector<Vec3> geodesicSphere() {
+  const double g = (1 + std::sqrt(5.0)) / 2;
+  std::vector<Vec3> corners;
+  for (double s : {-1.0, 1.0}) {
+    for (double t : {-1.0, 1.0}) {
+      corners.emplace_back(0, s, t * g);
+      corners.emplace_back(s, t * g, 0);
+      corners.emplace_back(t * g, 0, s);
+    }
+  }
+  std::vector<Vec3> points;
+  for (const Vec3& c : corners) points.push_back(c.normalized());
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    for (std::size_t j = i + 1; j < corners.size(); ++j) {
+      if ((corners[i] - corners[j]).norm() < 2.001) {  // an icosahedron edge has length 2
+        points.push_back((corners[i] + corners[j]).normalized());
+      }
+    }
+  }
+  return points;
+}
+
+}  // namespace
+
+std::vector<std::vector<Vec3>> boundingConvexPieces(const TriangleMesh& mesh,
+                                                    const std::string& what,
+                                                    const LinkPieceOptions& options) {
+  if (!options.decompose) return {convexHull(mesh.vertices, what).mesh.vertices};
+  std::vector<std::vector<Vec3>> pieces;
+  try {
+    for (const ConvexPiece& piece : decomposeBounding(mesh, options.decomposition).pieces) {
+      pieces.push_back(piece.vertices());
+    }
+  } catch (const InputError& error) {
+    throw InputError(what + ": " + error.what());
+  }
+  return pieces;
+}
+
+std::vector<std::vector<Vec3>> shapeConvexPieces(const CollisionShape& shape,
+                                                 const LinkPieceOptions& options) {
+  std::vector<std::vector<Vec3>> pieces;
+  switch (shape.kind) {
+    case CollisionShape::Kind::Box: {
+      std::vector<Vec3> corners;
+      for (int i = 0; i < 8; ++i) {
+        corners.emplace_back((i & 1 ? 0.5 : -0.5) * shape.size.x(),
+                             (i & 2 ? 0.5 : -0.5) * shape.size.y(),
+                             (i & 4 ? 0.5 : -0.5) * shape.size.z());
+      }
+      pieces.push_back(std::move(corners));
+      break;
+    }
+    case CollisionShape::Kind::Cylinder: {
+      const double r = shape.radius / std::cos(std::numbers::pi / kCylinderSides);
+      std::vector<Vec3> prism;
+      for (int i = 0; i < kCylinderSides; ++i) {
+        const double a = 2 * std::numbers::pi * i / kCylinderSides;
+        for (double z : {-0.5 * shape.length, 0.5 * shape.length}) {
+          prism.emplace_back(r * std::cos(a), r * std::sin(a), z);
+        }
+      }
+      pieces.push_back(std::move(prism));
+      break;
+    }
+    case CollisionShape::Kind::Sphere: {
+      std::vector<Vec3> points = geodesicSphere();
+      double inradius = 1;
+      for (const HullPlane& plane : convexHull(points, "sphere").planes) {
+        inradius = std::min(inradius, plane.offset);
+      }
+      for (Vec3& p : points) p *= shape.radius / inradius;
+      pieces.push_back(std::move(points));
+      break;
+    }
+    case CollisionShape::Kind::Mesh: {
+      TriangleMesh mesh = readMesh(shape.meshPath);
+      for (Vec3& v : mesh.vertices) v = v.cwiseProduct(shape.size);
+      pieces = boundingConvexPieces(mesh, shape.meshPath, options);
+      break;
+    }
+  }
+  for (auto& piece : pieces) {
+    for (Vec3& v : piece) v = shape.origin * v;
+  }
+  return pieces;
+}
+
+RobotCollisionModel::RobotCollisionModel(RobotModel model, const LinkPieceOptions& pieceOptions)
+    : model_(std::move(model)) {
+  const auto& links = model_.links();
+  std::vector<int> partOfLink(links.size(), -1);
+  for (std::size_t l = 0; l < links.size(); ++l) {
+    std::vector<std::vector<Vec3>> pieces;
+    for (const CollisionShape& shape : links[l].collisions) {
+      for (auto& piece : shapeConvexPieces(shape, pieceOptions)) pieces.push_back(std::move(piece));
+    }
+    if (pieces.empty()) continue;
+    partOfLink[l] = static_cast<int>(parts_.size());
+    parts_.push_back({std::make_shared<const CollisionBody>(pieces, "link " + links[l].name),
+                      static_cast<int>(l), Pose::Identity(), true, false});
+  }
+  filter_.resize(parts_.size());
+  for (const Part& part : parts_) {
+    int link = part.link;
+    while (links[static_cast<std::size_t>(link)].parentJoint >= 0) {
+      link =
+          model_
+              .joints()[static_cast<std::size_t>(links[static_cast<std::size_t>(link)].parentJoint)]
+              .parentLink;
+      if (partOfLink[static_cast<std::size_t>(link)] >= 0) {
+        filter_.allow(static_cast<std::size_t>(partOfLink[static_cast<std::size_t>(part.link)]),
+                      static_cast<std::size_t>(partOfLink[static_cast<std::size_t>(link)]));
+        break;
+      }
+    }
+  }
+}
+
+double RobotCollisionModel::linkReach(int link) const {
+  double reach = 0;
+  for (const Part& part : parts_) {
+    if (part.active && part.link == link) {
+      reach = std::max(reach, part.inLink.translation().norm() + part.body->reach());
+    }
+  }
+  return reach;
+}
+
+std::size_t RobotCollisionModel::attach(BodyPtr object, int link, const Pose& inLink) {
+  if (link < 0 || static_cast<std::size_t>(link) >= model_.links().size()) {
+    throw std::out_of_range("attach: no link " + std::to_string(link));
+  }
+  parts_.push_back(
+      {std::move(object), link, inLink, true, inLink.matrix() != Pose::Identity().matrix()});
+  const std::size_t index = parts_.size() - 1;
+  filter_.resize(parts_.size());
+  for (std::size_t i = 0; i < index; ++i) {
+    if (parts_[i].link == link) filter_.allow(i, index);
+  }
+  return index;
+}
+
+std::size_t RobotCollisionModel::allowPairsCollidingAt(std::span<const Pose> linkPoses,
+                                                       double margin) {
+  std::size_t allowed = 0;
+  for (std::size_t i = 0; i < parts_.size(); ++i) {
+    for (std::size_t j = i + 1; j < parts_.size(); ++j) {
+      if (parts_[i].active && parts_[j].active && !filter_.allowed(i, j) &&
+          bodiesCollide(*parts_[i].body, partPose(i, linkPoses), *parts_[j].body,
+                        partPose(j, linkPoses), margin)) {
+        filter_.allow(i, j);
+        ++allowed;
+      }
+    }
+  }
+  return allowed;
+}
+
+bool RobotCollisionModel::selfCollides(std::span<const Pose> linkPoses, double margin) const {
+  for (std::size_t i = 0; i < parts_.size(); ++i) {
+    if (!parts_[i].active) continue;
+    const Pose poseI = partPose(i, linkPoses);
+    for (std::size_t j = i + 1; j < parts_.size(); ++j) {
+      if (parts_[j].active && !filter_.allowed(i, j) &&
+          bodiesCollide(*parts_[i].body, poseI, *parts_[j].body, partPose(j, linkPoses), margin)) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+std::optional<std::size_t> RobotCollisionModel::firstSceneCollision(std::span<const Pose> linkPoses,
+                                                                    const CollisionScene& scene,
+                                                                    double margin) const {
+  for (std::size_t i = 0; i < parts_.size(); ++i) {
+    if (!parts_[i].active) continue;
+    if (auto hit = scene.firstCollision(*parts_[i].body, partPose(i, linkPoses), margin)) {
+      return hit;
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace kaboum::collision

@@ -1,0 +1,92 @@
+// Bounding swept volumes of robot motions (thesis §4.5, Proposition 3, Eq. 4.22): each convex
+// piece swept over one sampling step is conv(piece at pose i ∪ piece at pose i+1), queried through
+// its support mapping (never built as a hull) with the ε offset added to the query margin.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "kaboum/collision/robot_collision.hpp"
+#include "kaboum/collision/swept_step.hpp"
+
+namespace kaboum::collision {
+
+// conv(start ∪ end) of a convex shape at two poses: its support point in direction d is the
+// better of the two poses' support points.
+template <SupportMapping Shape>
+class SweptSupport {
+ public:
+  struct Hint {
+    typename Shape::Hint start{}, end{};
+  };
+  SweptSupport(const Shape& start, const Shape& end) : start_(start), end_(end) {}
+
+  [[nodiscard]] Vec3 support(const Vec3& direction, Hint& hint) const {
+    const Vec3 a = start_.support(direction, hint.start);
+    const Vec3 b = end_.support(direction, hint.end);
+    return direction.dot(b) > direction.dot(a) ? b : a;
+  }
+  [[nodiscard]] Vec3 center() const { return 0.5 * (start_.center() + end_.center()); }
+
+ private:
+  Shape start_, end_;
+};
+
+using SweptPiece = SweptSupport<TransformedSupport>;
+static_assert(SupportMapping<SweptPiece>);
+
+// Swept pieces of a robot along straight joint-space motions, with reusable buffers: after the
+// first motions of a given length no query allocates.
+class RobotSweep {
+ public:
+  // Holds a reference: `robot` must outlive it (attachments made later are included).
+  explicit RobotSweep(const RobotCollisionModel& robot);
+
+  struct Piece {
+    SweptPiece shape;
+    Aabb box;     // world box of both poses
+    Vec3 centre;  // bounding sphere of both poses
+    double radius = 0;
+    std::size_t part = 0;
+  };
+
+  // Splits qa -> qb per part with sweepSubdivisions() (rounded up to powers of two, so that all
+  // parts share the forward-kinematics samples) and returns the swept pieces: every point of every
+  // active part along the motion lies within `epsilon` of one of them.
+  std::span<const Piece> sweep(std::span<const double> qa, std::span<const double> qb,
+                               double epsilon);
+
+  // Definition 1 (2): the first scene object within margin + ε of the swept volume of qa -> qb.
+  // Never misses an object the robot comes within `margin` of anywhere along the motion.
+  std::optional<std::size_t> firstSceneCollision(std::span<const double> qa,
+                                                 std::span<const double> qb,
+                                                 const CollisionScene& scene, double margin,
+                                                 double epsilon);
+
+  [[nodiscard]] const RobotCollisionModel& robot() const { return robot_; }
+  // Number of forward-kinematics samples the last sweep used (n_max + 1).
+  [[nodiscard]] std::size_t sampleCount() const { return samples_; }
+
+ private:
+  [[nodiscard]] std::span<const Pose> samplePoses(std::size_t sample) const {
+    const std::size_t links = robot_.model().links().size();
+    return {poses_.data() + sample * links, links};
+  }
+
+  const RobotCollisionModel& robot_;
+  std::vector<LinkSweepChain> chains_;
+  std::vector<int> subdivisions_;  // per part
+  std::vector<Pose> poses_;        // samples x links
+  std::vector<double> q_;
+  std::vector<Piece> pieces_;
+  std::size_t samples_ = 0;
+};
+
+// Definition 1 (3): whether the swept volumes of two motions (each bounded at `epsilon`) come
+// within `margin` (queried at margin + 2ε). Allocates only through the sweeps' buffers.
+bool sweptVolumesCollide(RobotSweep& a, std::span<const double> qa0, std::span<const double> qa1,
+                         RobotSweep& b, std::span<const double> qb0, std::span<const double> qb1,
+                         double margin, double epsilon);
+
+}  // namespace kaboum::collision
