@@ -27,12 +27,28 @@ struct LimitReached {
   SearchStatus status;
 };
 
+enum class OrMode { Greedy, AStar, BreadthFirst, DepthFirst };
+
+OrMode orMode(const std::string& name) {
+  const std::vector<std::string>& names = contingentSearchModes();
+  const auto it = std::find(names.begin(), names.end(), name);
+  if (it == names.end()) {
+    throw InputError("unknown contingent search mode '" + name +
+                     "' (expected gbfs, astar, bfs or dfs)");
+  }
+  return static_cast<OrMode>(it - names.begin());
+}
+
 class AndOrSearch {
  public:
   AndOrSearch(KnowledgeTask& task, const ContingentOptions& options)
       : task_(task),
         options_(options),
-        heuristic_(makeHeuristic(options.heuristic, task.task())),
+        mode_(orMode(options.mode)),
+        heuristic_(makeHeuristic(mode_ == OrMode::Greedy || mode_ == OrMode::AStar
+                                     ? options.heuristic
+                                     : std::string("blind"),
+                                 task.task())),
         start_(std::chrono::steady_clock::now()) {}
 
   ContingentResult run() {
@@ -198,10 +214,11 @@ class AndOrSearch {
       int belief;
       int parent;
       int op;
+      long steps;  // actions from `root`
     };
-    std::vector<SearchNode> nodes{{root, -1, -1}};
+    std::vector<SearchNode> nodes{{root, -1, -1, 0}};
     std::unordered_set<int> seen{root};
-    using Entry = std::pair<int, std::size_t>;  // heuristic value, node (first in, first out)
+    using Entry = std::pair<long, std::size_t>;  // priority, node (ties: first in, first out)
     std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
     open.push({0, 0});
     state_[root] = kOnPath;
@@ -229,8 +246,9 @@ class AndOrSearch {
         if (candidate.outcomes.size() == 1) {
           const int child = candidate.outcomes[0].belief;
           if (state_[child] != kOpen || !seen.insert(child).second) continue;
-          nodes.push_back({child, static_cast<int>(index), candidate.op});
-          open.push({candidate.score, nodes.size() - 1});
+          nodes.push_back({child, static_cast<int>(index), candidate.op, nodes[index].steps + 1});
+          open.push(
+              {priority(nodes.back().steps, candidate.score, nodes.size() - 1), nodes.size() - 1});
           continue;
         }
         const int rest = solveOutcome(candidate.outcomes, candidate.root, depth + 1);
@@ -254,12 +272,29 @@ class AndOrSearch {
     return next;
   }
 
+  // Open-list key of a node `steps` actions from the search root, with heuristic value `score`,
+  // the `index`-th generated: smallest first.
+  long priority(long steps, int score, std::size_t index) const {
+    switch (mode_) {
+      case OrMode::Greedy:
+        return score;
+      case OrMode::AStar:
+        return steps + score;
+      case OrMode::BreadthFirst:
+        return steps;
+      case OrMode::DepthFirst:
+        return -static_cast<long>(index);
+    }
+    return score;
+  }
+
   static constexpr char kOpen = 0;
   static constexpr char kOnPath = 1;
   static constexpr char kFailed = 2;
 
   KnowledgeTask& task_;
   const ContingentOptions& options_;
+  OrMode mode_;
   std::unique_ptr<Heuristic> heuristic_;
   std::chrono::steady_clock::time_point start_;
   std::unordered_map<Belief, int, BeliefHash> ids_;
@@ -289,6 +324,11 @@ std::vector<int> inDegrees(const PlanTree& plan) {
 }
 
 }  // namespace
+
+const std::vector<std::string>& contingentSearchModes() {
+  static const std::vector<std::string> names{"gbfs", "astar", "bfs", "dfs"};
+  return names;
+}
 
 ContingentResult solveContingent(KnowledgeTask& task, const ContingentOptions& options) {
   return AndOrSearch(task, options).run();
