@@ -14,14 +14,17 @@
 namespace kaboum::symbolic {
 
 // A plan as a DAG: an action node continues at `next`; a branch node on `atom` continues at
-// `next` when the atom is observed true and at `onFalse` otherwise; a goal node ends the branch.
+// `next` when the atom is observed true and at `onFalse` otherwise (a branch on a sensed value,
+// `fluent` >= 0, tests (= fluent value) instead); a goal node ends the branch.
 // Nodes reached from several places are solved sub-problems shared between branches.
 struct PlanTree {
   struct Node {
     enum class Kind { Goal, Action, Branch };
     Kind kind = Kind::Goal;
-    int op = -1;       // Action: ground operator
-    AtomId atom = -1;  // Branch: observed atom
+    int op = -1;           // Action: ground operator
+    AtomId atom = -1;      // Branch: observed atom
+    FluentId fluent = -1;  // Branch on a value: sensed function term (atom is -1)
+    double value = 0.0;
     int next = -1;
     int onFalse = -1;
     SourcePos pos;  // where a parsed plan wrote the node
