@@ -161,12 +161,12 @@ TEST(Knowledge, KvQueriesOnFunctionValues) {
 // A table known clean becomes unknown after waiting (del(Kf, clean)); it may only be inspected
 // while not known clean (¬K(clean)), and served only when known clean.
 const std::string kStaleDomain = R"((define (domain stale)
-  (:predicates (clean) (waited) (served))
+  (:predicates (clean) (waited) (served) (noted))
   (:action wait :precondition (not (waited)) :effect (and (waited) (del kf (clean))))
   (:action inspect :precondition (not (k (clean))) :effect (kw (clean)))
   (:action wipe :precondition (not (clean)) :effect (clean))
   (:action serve :precondition (and (clean) (waited)) :effect (served))
-  (:action forget-dirty :precondition (not (k (not (clean)))) :effect (add kf (served)))
+  (:action note :precondition (not (k (not (clean)))) :effect (add kf (noted)))
   (:action unforget :effect (del kf (not (clean))))))";
 
 ContingentProblem staleProblem(const std::string& init, const std::string& goal) {
@@ -190,13 +190,12 @@ TEST(KnowledgeOperators, NotKnownTrueQuery) {
   KnowledgeTask falseTask(knownFalse, ProcedureRegistry{});
   EXPECT_TRUE(falseTask.applicable(falseTask.findOperator("(inspect)"), falseTask.initialBelief()));
   // ¬K(¬clean): false when clean is known false, true when known true or unknown.
-  const int notKnownDirty = falseTask.findOperator("(forget-dirty)");
+  const int notKnownDirty = falseTask.findOperator("(note)");
   ASSERT_GE(notKnownDirty, 0);
   EXPECT_FALSE(falseTask.applicable(notKnownDirty, falseTask.initialBelief()));
+  EXPECT_TRUE(knownTask.applicable(knownTask.findOperator("(note)"), knownTask.initialBelief()));
   EXPECT_TRUE(
-      knownTask.applicable(knownTask.findOperator("(forget-dirty)"), knownTask.initialBelief()));
-  EXPECT_TRUE(unknownTask.applicable(unknownTask.findOperator("(forget-dirty)"),
-                                     unknownTask.initialBelief()));
+      unknownTask.applicable(unknownTask.findOperator("(note)"), unknownTask.initialBelief()));
 }
 
 TEST(KnowledgeOperators, DeletingFromKfForgetsTheAtom) {
@@ -225,8 +224,9 @@ TEST(KnowledgeOperators, DeletingFromKfForgetsTheAtom) {
   Belief after;
   ASSERT_TRUE(dirtyTask.apply(dirtyTask.findOperator("(wait)"), dirtyTask.initialBelief(), after));
   EXPECT_EQ(after.size(), 1u);
-  ASSERT_TRUE(dirtyTask.apply(dirtyTask.findOperator("(unforget)"), after, after));
-  EXPECT_EQ(after.size(), 2u);
+  Belief unforgotten;
+  ASSERT_TRUE(dirtyTask.apply(dirtyTask.findOperator("(unforget)"), after, unforgotten));
+  EXPECT_EQ(unforgotten.size(), 2u);
   // Execution: forgetting does not change the true world.
   const std::uint32_t world = task.initialBelief().front();
   const std::uint32_t next = task.applyIn(wait, world);
@@ -268,6 +268,92 @@ TEST(KnowledgeOperators, DeletingFromKwRemovesThePendingObservation) {
   ASSERT_TRUE(task.apply(task.findOperator("(unlook)"), sensed, unsensed));
   EXPECT_EQ(task.pendingObservation(unsensed), -1);
   EXPECT_EQ(unsensed, task.initialBelief());
+}
+
+// Filling a box with an unknown content (small, medium or big) makes its weight unknown
+// (del(Kv, weight)); weighing senses it (add(Kv, weight)); the shelf depends on the weight.
+const std::string kScaleDomain = R"((define (domain scale) (:types box)
+  (:predicates (small ?b - box) (medium ?b - box) (big ?b - box) (filled ?b - box)
+               (shelved ?b - box))
+  (:functions (weight ?b - box))
+  (:action fill :parameters (?b - box) :precondition (not (filled ?b))
+    :effect (and (filled ?b) (del kv (weight ?b)) (when (small ?b) (assign (weight ?b) 1))
+                 (when (medium ?b) (assign (weight ?b) 4)) (when (big ?b) (assign (weight ?b) 9))))
+  (:action weigh :parameters (?b - box) :precondition (and (filled ?b) (not (kv (weight ?b))))
+    :effect (kv (weight ?b)))
+  (:action shelve-low :parameters (?b - box)
+    :precondition (and (filled ?b) (kv (weight ?b)) (>= (weight ?b) 5)) :effect (shelved ?b))
+  (:action shelve-high :parameters (?b - box)
+    :precondition (and (filled ?b) (kv (weight ?b)) (< (weight ?b) 5)) :effect (shelved ?b))))";
+
+const std::string kScaleProblem = R"((define (problem one-box) (:domain scale) (:objects b1 - box)
+  (:init (= (weight b1) 0) (oneof (small b1) (medium b1) (big b1)))
+  (:goal (shelved b1))))";
+
+TEST(KvSensing, BranchesOncePerPossibleValue) {
+  const ContingentProblem contingent = parseTexts(kScaleDomain, kScaleProblem);
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  ASSERT_EQ(task.initialBelief().size(), 3u);
+  const FluentId weight = task.findFluent("(weight b1)");
+  ASSERT_GE(weight, 0);
+  EXPECT_TRUE(task.knowsValue(weight, task.initialBelief()));  // 0 in every world
+  Belief filled;
+  ASSERT_TRUE(task.apply(task.findOperator("(fill b1)"), task.initialBelief(), filled));
+  FluentId pending = -1;
+  double value = 0.0;
+  EXPECT_FALSE(task.knowsValue(weight, filled));
+  EXPECT_FALSE(task.pendingValue(filled, pending, value));  // not sensed yet
+  Belief weighed;
+  ASSERT_TRUE(task.apply(task.findOperator("(weigh b1)"), filled, weighed));
+  EXPECT_TRUE(task.knowsValue(weight, weighed));
+  ASSERT_TRUE(task.pendingValue(weighed, pending, value));
+  EXPECT_EQ(pending, weight);
+  Belief equal;
+  Belief other;
+  task.splitValue(weight, value, weighed, equal, other);
+  EXPECT_EQ(equal.size(), 1u);
+  EXPECT_EQ(other.size(), 2u);
+  EXPECT_FALSE(task.pendingValue(equal, pending, value));  // one value left: known
+
+  const ContingentResult result = solveAndValidate(task);
+  ASSERT_EQ(result.status, SearchStatus::Solved);
+  const std::string text = formatPlanTree(task, result.plan);
+  const TreeMetrics metrics = measure(result.plan);
+  EXPECT_EQ(metrics.leaves, 3.0) << text;  // weights 1, 4 and 9
+  EXPECT_EQ(metrics.branches, 2.0) << text;
+  EXPECT_NE(text.find("(branch (= (weight b1) "), std::string::npos) << text;
+  EXPECT_NE(text.find("(shelve-low b1)"), std::string::npos) << text;
+  EXPECT_NE(text.find("(shelve-high b1)"), std::string::npos) << text;
+}
+
+TEST(KvSensing, ExecutionFollowsTheSensedValueAndTheValidatorNeedsKv) {
+  const ContingentProblem contingent = parseTexts(kScaleDomain, kScaleProblem);
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  const ContingentResult result = solveContingent(task, {});
+  ASSERT_EQ(result.status, SearchStatus::Solved);
+  for (const char* content : {"small", "medium", "big"}) {
+    const std::vector<HiddenState> hidden =
+        parseHidden(std::string("(:hidden (") + content + " b1))", "h", contingent);
+    const Execution run = executePlanTree(task, result.plan, task.hiddenWorld(hidden[0], "h"));
+    EXPECT_TRUE(run.reachedGoal) << content << ": " << run.message;
+    const bool heavy = std::string(content) == "big";
+    EXPECT_EQ(std::count(run.steps.begin(), run.steps.end(), "(shelve-low b1)"), heavy ? 1 : 0)
+        << content;
+  }
+  // Branching on the weight without weighing it first is rejected.
+  const std::string unsensed =
+      "(plan (fill b1) (branch (= (weight b1) 9) (true (shelve-low b1)) (false (shelve-high "
+      "b1))))";
+  const TreeValidation validation =
+      validatePlanTree(task, parsePlanTree(unsensed, "u.plan", task), "u.plan");
+  EXPECT_FALSE(validation.valid);
+  EXPECT_NE(validation.message.find("u.plan:1:17: branch on (weight b1), whose value no sensing"),
+            std::string::npos)
+      << validation.message;
+  EXPECT_THROW(parsePlanTree("(plan (branch (= (weight b1) heavy) (true) (false)))", "x", task),
+               InputError);
+  EXPECT_THROW(parsePlanTree("(plan (branch (= (height b1) 1) (true) (false)))", "x", task),
+               InputError);
 }
 
 // --- Force Sensing (thesis Table 3.1, Figure 3.2) --------------------------------------------
