@@ -41,6 +41,7 @@ int runContingent(const ContingentCliOptions& options) {
   const auto& stats = result.statistics;
   if (options.json) {
     nlohmann::json report = {{"status", symbolic::toString(result.status)},
+                             {"search", options.search.mode},
                              {"plan", symbolic::planTreeJson(task, result.plan)},
                              {"tree",
                               {{"actions", metrics.actions},
@@ -81,8 +82,13 @@ VerbRunner setupContingent(CLI::App& command) {
   command.add_option("domain", options->domain, "Contingent PDDL domain file")->required();
   command.add_option("problem", options->problem, "Contingent PDDL problem file")->required();
   command
+      .add_option("--search", options->search.mode,
+                  "OR search between branch points: gbfs (greedy best-first), astar, bfs, dfs")
+      ->check(CLI::IsMember(symbolic::contingentSearchModes()))
+      ->capture_default_str();
+  command
       .add_option("--heuristic", options->search.heuristic,
-                  "Heuristic, evaluated in every world (maximum)")
+                  "Heuristic, evaluated in every world (maximum); ignored by bfs and dfs")
       ->check(CLI::IsMember(symbolic::heuristicNames()))
       ->capture_default_str();
   command.add_option("--time-limit", options->search.limits.seconds, "Search time limit (s)")

@@ -104,6 +104,23 @@ TEST(CliContingent, LimitsEndWithExitCodeOne) {
   EXPECT_EQ(nlohmann::json::parse(result.output)["status"], "node-limit");
 }
 
+TEST(CliContingent, EverySearchModeGivesAPlanThatValidates) {
+  const std::string d = instance("ebtcs", "d.pddl");
+  const std::string p = instance("ebtcs", "p.pddl");
+  for (const std::string mode : {"gbfs", "astar", "bfs", "dfs"}) {
+    const std::string planFile = writeTempFile("ebtcs-" + mode + ".plan", "");
+    const auto planned = runCli("contingent " + d + " " + p + " --quiet --search " + mode +
+                                " --plan-out " + planFile);
+    ASSERT_EQ(planned.exitCode, 0) << mode << ": " << planned.output;
+    const auto validated = runCli("contingent-validate " + d + " " + p + " " + planFile +
+                                  " --hidden " + instance("ebtcs", "hidden.pddl"));
+    EXPECT_EQ(validated.exitCode, 0) << mode << ": " << validated.output;
+  }
+  const auto json = runCli("contingent " + d + " " + p + " --search bfs --json");
+  ASSERT_EQ(json.exitCode, 0) << json.output;
+  EXPECT_EQ(nlohmann::json::parse(json.output)["search"], "bfs");
+}
+
 TEST(CliContingent, ScenariosNeedTheToyGeometry) {
   const std::string d = instance("scenarios", "bimanual-assembly-domain.pddl");
   const std::string p = instance("scenarios", "bimanual-assembly.pddl");
@@ -167,6 +184,12 @@ TEST(CliContingent, BadInputGivesOneLineAndExitCodeTwo) {
       "contingent-validate " + domain + " " + good + " " + okPlan + " --hidden " + hidden,
       "h.pddl:2:2: hidden state is not one of the initial worlds");
   expectBadInput("force-sensing 0", "n must be at least 1");
+  expectBadInput("contingent " + domain + " " + good + " --search ids", "--search");
+  const std::string forgetDomain = writeTempFile(
+      "forget.pddl",
+      "(define (domain d) (:predicates (a) (b))\n  (:action t :effect (del kq (b))))\n");
+  expectBadInput("contingent " + forgetDomain + " " + good,
+                 "forget.pddl:2:27: unknown database 'kq': expected kf, kw or kv");
 }
 
 }  // namespace

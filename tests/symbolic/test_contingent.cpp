@@ -158,6 +158,204 @@ TEST(Knowledge, KvQueriesOnFunctionValues) {
   EXPECT_LT(text.find("(weigh a)"), text.find("(log a)")) << text;
 }
 
+// A table known clean becomes unknown after waiting (del(Kf, clean)); it may only be inspected
+// while not known clean (¬K(clean)), and served only when known clean.
+const std::string kStaleDomain = R"((define (domain stale)
+  (:predicates (clean) (waited) (served) (noted))
+  (:action wait :precondition (not (waited)) :effect (and (waited) (del kf (clean))))
+  (:action inspect :precondition (not (k (clean))) :effect (kw (clean)))
+  (:action wipe :precondition (not (clean)) :effect (clean))
+  (:action serve :precondition (and (clean) (waited)) :effect (served))
+  (:action note :precondition (not (k (not (clean)))) :effect (add kf (noted)))
+  (:action unforget :effect (del kf (not (clean))))))";
+
+ContingentProblem staleProblem(const std::string& init, const std::string& goal) {
+  return parseTexts(kStaleDomain, "(define (problem p) (:domain stale) (:init " + init +
+                                      ") (:goal " + goal + "))");
+}
+
+TEST(KnowledgeOperators, NotKnownTrueQuery) {
+  const ContingentProblem known = staleProblem("(clean)", "(served)");
+  KnowledgeTask knownTask(known, ProcedureRegistry{});
+  const int inspect = knownTask.findOperator("(inspect)");
+  ASSERT_GE(inspect, 0);
+  EXPECT_FALSE(knownTask.applicable(inspect, knownTask.initialBelief()));  // K(clean)
+
+  const ContingentProblem unknown = staleProblem("(unknown (clean))", "(served)");
+  KnowledgeTask unknownTask(unknown, ProcedureRegistry{});
+  EXPECT_TRUE(
+      unknownTask.applicable(unknownTask.findOperator("(inspect)"), unknownTask.initialBelief()));
+
+  const ContingentProblem knownFalse = staleProblem("", "(served)");  // closed world: K(¬clean)
+  KnowledgeTask falseTask(knownFalse, ProcedureRegistry{});
+  EXPECT_TRUE(falseTask.applicable(falseTask.findOperator("(inspect)"), falseTask.initialBelief()));
+  // ¬K(¬clean): false when clean is known false, true when known true or unknown.
+  const int notKnownDirty = falseTask.findOperator("(note)");
+  ASSERT_GE(notKnownDirty, 0);
+  EXPECT_FALSE(falseTask.applicable(notKnownDirty, falseTask.initialBelief()));
+  EXPECT_TRUE(knownTask.applicable(knownTask.findOperator("(note)"), knownTask.initialBelief()));
+  EXPECT_TRUE(
+      unknownTask.applicable(unknownTask.findOperator("(note)"), unknownTask.initialBelief()));
+}
+
+TEST(KnowledgeOperators, DeletingFromKfForgetsTheAtom) {
+  const ContingentProblem contingent = staleProblem("(clean)", "(served)");
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  ASSERT_EQ(task.initialBelief().size(), 1u);
+  const int wait = task.findOperator("(wait)");
+  const int inspect = task.findOperator("(inspect)");
+  const int wipe = task.findOperator("(wipe)");
+  Belief waited;
+  ASSERT_TRUE(task.apply(wait, task.initialBelief(), waited));
+  ASSERT_EQ(waited.size(), 2u);  // clean and not clean
+  const AtomId clean = task.findAtom("(clean)");
+  Belief onTrue;
+  Belief onFalse;
+  task.split(clean, waited, onTrue, onFalse);
+  EXPECT_EQ(onTrue.size(), 1u);
+  EXPECT_EQ(onFalse.size(), 1u);
+  EXPECT_TRUE(task.applicable(inspect, waited));  // ¬K(clean) now
+  EXPECT_FALSE(task.applicable(wipe, waited));    // nor K(¬clean)
+  EXPECT_FALSE(task.knowsWhether(clean, waited));
+
+  // del(Kf, clean) leaves known-false knowledge alone; del(Kf, ¬clean) makes it unknown.
+  const ContingentProblem dirty = staleProblem("", "(served)");
+  KnowledgeTask dirtyTask(dirty, ProcedureRegistry{});
+  Belief after;
+  ASSERT_TRUE(dirtyTask.apply(dirtyTask.findOperator("(wait)"), dirtyTask.initialBelief(), after));
+  EXPECT_EQ(after.size(), 1u);
+  Belief unforgotten;
+  ASSERT_TRUE(dirtyTask.apply(dirtyTask.findOperator("(unforget)"), after, unforgotten));
+  EXPECT_EQ(unforgotten.size(), 2u);
+  // Execution: forgetting does not change the true world.
+  const std::uint32_t world = task.initialBelief().front();
+  const std::uint32_t next = task.applyIn(wait, world);
+  EXPECT_TRUE(task.world(next).atom(clean));
+}
+
+TEST(KnowledgeOperators, ForgottenAtomIsSensedAgainInTheSolvedPlan) {
+  const ContingentProblem contingent = staleProblem("(clean)", "(served)");
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  const ContingentResult result = solveAndValidate(task);
+  ASSERT_EQ(result.status, SearchStatus::Solved);
+  const std::string text = formatPlanTree(task, result.plan);
+  EXPECT_NE(text.find("(inspect)"), std::string::npos) << text;
+  EXPECT_NE(text.find("(wipe)"), std::string::npos) << text;
+  EXPECT_EQ(measure(result.plan).leaves, 2.0) << text;
+
+  // A goal may ask for ¬K: "the agent no longer knows the table is clean".
+  const ContingentProblem forget = staleProblem("(clean)", "(not (k (clean)))");
+  KnowledgeTask forgetTask(forget, ProcedureRegistry{});
+  EXPECT_FALSE(forgetTask.isGoal(forgetTask.initialBelief()));
+  const ContingentResult forgotten = solveAndValidate(forgetTask);
+  ASSERT_EQ(forgotten.status, SearchStatus::Solved);
+  EXPECT_EQ(formatPlanTree(forgetTask, forgotten.plan).find("(wait)") != std::string::npos, true);
+}
+
+TEST(KnowledgeOperators, DeletingFromKwRemovesThePendingObservation) {
+  const std::string domain = R"((define (domain lamp2)
+    (:predicates (on))
+    (:action look :effect (add kw (on)))
+    (:action unlook :effect (del kw (on)))))";
+  const ContingentProblem contingent = parseTexts(
+      domain, "(define (problem p) (:domain lamp2) (:init (unknown (on))) (:goal (on)))");
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  const AtomId on = task.findAtom("(on)");
+  Belief sensed;
+  ASSERT_TRUE(task.apply(task.findOperator("(look)"), task.initialBelief(), sensed));
+  EXPECT_EQ(task.pendingObservation(sensed), on);
+  Belief unsensed;
+  ASSERT_TRUE(task.apply(task.findOperator("(unlook)"), sensed, unsensed));
+  EXPECT_EQ(task.pendingObservation(unsensed), -1);
+  EXPECT_EQ(unsensed, task.initialBelief());
+}
+
+// Filling a box with an unknown content (small, medium or big) makes its weight unknown
+// (del(Kv, weight)); weighing senses it (add(Kv, weight)); the shelf depends on the weight.
+const std::string kScaleDomain = R"((define (domain scale) (:types box)
+  (:predicates (small ?b - box) (medium ?b - box) (big ?b - box) (filled ?b - box)
+               (shelved ?b - box))
+  (:functions (weight ?b - box))
+  (:action fill :parameters (?b - box) :precondition (not (filled ?b))
+    :effect (and (filled ?b) (del kv (weight ?b)) (when (small ?b) (assign (weight ?b) 1))
+                 (when (medium ?b) (assign (weight ?b) 4)) (when (big ?b) (assign (weight ?b) 9))))
+  (:action weigh :parameters (?b - box) :precondition (and (filled ?b) (not (kv (weight ?b))))
+    :effect (kv (weight ?b)))
+  (:action shelve-low :parameters (?b - box)
+    :precondition (and (filled ?b) (kv (weight ?b)) (>= (weight ?b) 5)) :effect (shelved ?b))
+  (:action shelve-high :parameters (?b - box)
+    :precondition (and (filled ?b) (kv (weight ?b)) (< (weight ?b) 5)) :effect (shelved ?b))))";
+
+const std::string kScaleProblem = R"((define (problem one-box) (:domain scale) (:objects b1 - box)
+  (:init (= (weight b1) 0) (oneof (small b1) (medium b1) (big b1)))
+  (:goal (shelved b1))))";
+
+TEST(KvSensing, BranchesOncePerPossibleValue) {
+  const ContingentProblem contingent = parseTexts(kScaleDomain, kScaleProblem);
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  ASSERT_EQ(task.initialBelief().size(), 3u);
+  const FluentId weight = task.findFluent("(weight b1)");
+  ASSERT_GE(weight, 0);
+  EXPECT_TRUE(task.knowsValue(weight, task.initialBelief()));  // 0 in every world
+  Belief filled;
+  ASSERT_TRUE(task.apply(task.findOperator("(fill b1)"), task.initialBelief(), filled));
+  FluentId pending = -1;
+  double value = 0.0;
+  EXPECT_FALSE(task.knowsValue(weight, filled));
+  EXPECT_FALSE(task.pendingValue(filled, pending, value));  // not sensed yet
+  Belief weighed;
+  ASSERT_TRUE(task.apply(task.findOperator("(weigh b1)"), filled, weighed));
+  EXPECT_TRUE(task.knowsValue(weight, weighed));
+  ASSERT_TRUE(task.pendingValue(weighed, pending, value));
+  EXPECT_EQ(pending, weight);
+  Belief equal;
+  Belief other;
+  task.splitValue(weight, value, weighed, equal, other);
+  EXPECT_EQ(equal.size(), 1u);
+  EXPECT_EQ(other.size(), 2u);
+  EXPECT_FALSE(task.pendingValue(equal, pending, value));  // one value left: known
+
+  const ContingentResult result = solveAndValidate(task);
+  ASSERT_EQ(result.status, SearchStatus::Solved);
+  const std::string text = formatPlanTree(task, result.plan);
+  const TreeMetrics metrics = measure(result.plan);
+  EXPECT_EQ(metrics.leaves, 3.0) << text;  // weights 1, 4 and 9
+  EXPECT_EQ(metrics.branches, 2.0) << text;
+  EXPECT_NE(text.find("(branch (= (weight b1) "), std::string::npos) << text;
+  EXPECT_NE(text.find("(shelve-low b1)"), std::string::npos) << text;
+  EXPECT_NE(text.find("(shelve-high b1)"), std::string::npos) << text;
+}
+
+TEST(KvSensing, ExecutionFollowsTheSensedValueAndTheValidatorNeedsKv) {
+  const ContingentProblem contingent = parseTexts(kScaleDomain, kScaleProblem);
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  const ContingentResult result = solveContingent(task, {});
+  ASSERT_EQ(result.status, SearchStatus::Solved);
+  for (const char* content : {"small", "medium", "big"}) {
+    const std::vector<HiddenState> hidden =
+        parseHidden(std::string("(:hidden (") + content + " b1))", "h", contingent);
+    const Execution run = executePlanTree(task, result.plan, task.hiddenWorld(hidden[0], "h"));
+    EXPECT_TRUE(run.reachedGoal) << content << ": " << run.message;
+    const bool heavy = std::string(content) == "big";
+    EXPECT_EQ(std::count(run.steps.begin(), run.steps.end(), "(shelve-low b1)"), heavy ? 1 : 0)
+        << content;
+  }
+  // Branching on the weight without weighing it first is rejected.
+  const std::string unsensed =
+      "(plan (fill b1) (branch (= (weight b1) 9) (true (shelve-low b1)) (false (shelve-high "
+      "b1))))";
+  const TreeValidation validation =
+      validatePlanTree(task, parsePlanTree(unsensed, "u.plan", task), "u.plan");
+  EXPECT_FALSE(validation.valid);
+  EXPECT_NE(validation.message.find("u.plan:1:17: branch on (weight b1), whose value no sensing"),
+            std::string::npos)
+      << validation.message;
+  EXPECT_THROW(parsePlanTree("(plan (branch (= (weight b1) heavy) (true) (false)))", "x", task),
+               InputError);
+  EXPECT_THROW(parsePlanTree("(plan (branch (= (height b1) 1) (true) (false)))", "x", task),
+               InputError);
+}
+
 // --- Force Sensing (thesis Table 3.1, Figure 3.2) --------------------------------------------
 
 TEST(ForceSensing, TwoContainersGiveTheBranchedPlanOfFigure32) {
@@ -261,6 +459,51 @@ TEST(Scenarios, BimanualAssemblyBuildsTheGearbox) {
   EXPECT_NE(text.find("(assemblepipebearing robot1 o3 robot2"), std::string::npos) << text;
   EXPECT_NE(text.find("(assemblebearingtree"), std::string::npos) << text;
   EXPECT_NE(text.find("(assemblepipetree robot1 o3 o4)"), std::string::npos) << text;
+}
+
+// --- search modes ----------------------------------------------------------------------------
+
+class SearchMode : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(SearchMode, ForceSensingTwoContainersHasFourValidatedLeaves) {
+  const ContingentProblem contingent =
+      parseContingent(forceSensingDomain(), "fs-domain", forceSensingProblem(2), "fs-2");
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  ContingentOptions options;
+  options.mode = GetParam();
+  const ContingentResult result = solveAndValidate(task, options);
+  ASSERT_EQ(result.status, SearchStatus::Solved) << GetParam();
+  EXPECT_EQ(measure(result.plan).leaves, 4.0) << GetParam();
+  // Each container needs grasp, senseWeight, a transfer and ungrasp: no path is shorter.
+  EXPECT_GE(measure(result.plan).depth, 8u) << GetParam();
+}
+
+TEST_P(SearchMode, EbtcsSolvesAndExecutesEveryHiddenState) {
+  const ContingentProblem contingent =
+      loadContingent(contingentPath("ebtcs/d.pddl"), contingentPath("ebtcs/p.pddl"));
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  ContingentOptions options;
+  options.mode = GetParam();
+  const ContingentResult result = solveAndValidate(task, options);
+  ASSERT_EQ(result.status, SearchStatus::Solved) << GetParam();
+  EXPECT_GE(measure(result.plan).leaves, 2.0);
+  const std::vector<HiddenState> hidden =
+      parseHidden(readTextFile(contingentPath("ebtcs/hidden.pddl")), "hidden", contingent);
+  for (const HiddenState& state : hidden) {
+    const Execution run = executePlanTree(task, result.plan, task.hiddenWorld(state, "hidden"));
+    EXPECT_TRUE(run.reachedGoal) << GetParam() << ": " << run.message;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Contingent, SearchMode, ::testing::Values("gbfs", "astar", "bfs", "dfs"));
+
+TEST(SearchModeBadInput, UnknownModeIsAnInputError) {
+  const ContingentProblem contingent =
+      parseContingent(forceSensingDomain(), "fs-domain", forceSensingProblem(1), "fs-1");
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  ContingentOptions options;
+  options.mode = "ids";
+  EXPECT_THROW(solveContingent(task, options), InputError);
 }
 
 // --- public benchmarks (copies in data/pddl/contingent) --------------------------------------
@@ -431,6 +674,16 @@ TEST(ContingentBadInput, MalformedKnowledgeQueries) {
   EXPECT_NE(errorOf(domain("(kw (zz))"), problem).find("undefined predicate 'zz'"),
             std::string::npos);
   EXPECT_NE(errorOf(domain("(kv (g))"), problem).find("undefined function 'g'"), std::string::npos);
+  EXPECT_NE(errorOf(domain("(not (k (zz)))"), problem).find("undefined predicate 'zz'"),
+            std::string::npos);
+  const auto effect = [](const std::string& text) {
+    return "(define (domain d) (:predicates (a))\n (:action s :effect " + text + "))";
+  };
+  EXPECT_NE(errorOf(effect("(del kx (a))"), problem).find("d.pddl:2:26: unknown database 'kx'"),
+            std::string::npos);
+  EXPECT_NE(errorOf(effect("(del kf (not))"), problem).find("expected an atom"), std::string::npos);
+  EXPECT_NE(errorOf(effect("(del kf (zz))"), problem).find("undefined predicate 'zz'"),
+            std::string::npos);
   EXPECT_NE(
       errorOf("(define (domain d) (:predicates (a))\n (:action s :observe (not (a))))", problem)
           .find("':observe' takes atoms"),

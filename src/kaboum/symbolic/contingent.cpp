@@ -2,10 +2,14 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
 #include <functional>
+#include <iomanip>
 #include <map>
 #include <queue>
 #include <set>
+#include <sstream>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -23,16 +27,36 @@ struct BeliefHash {
   }
 };
 
+bool sameValue(double a, double b) {
+  return a == b || (std::isnan(a) && std::isnan(b));
+}
+
 struct LimitReached {
   SearchStatus status;
 };
+
+enum class OrMode { Greedy, AStar, BreadthFirst, DepthFirst };
+
+OrMode orMode(const std::string& name) {
+  const std::vector<std::string>& names = contingentSearchModes();
+  const auto it = std::find(names.begin(), names.end(), name);
+  if (it == names.end()) {
+    throw InputError("unknown contingent search mode '" + name +
+                     "' (expected gbfs, astar, bfs or dfs)");
+  }
+  return static_cast<OrMode>(it - names.begin());
+}
 
 class AndOrSearch {
  public:
   AndOrSearch(KnowledgeTask& task, const ContingentOptions& options)
       : task_(task),
         options_(options),
-        heuristic_(makeHeuristic(options.heuristic, task.task())),
+        mode_(orMode(options.mode)),
+        heuristic_(makeHeuristic(mode_ == OrMode::Greedy || mode_ == OrMode::AStar
+                                     ? options.heuristic
+                                     : std::string("blind"),
+                                 task.task())),
         start_(std::chrono::steady_clock::now()) {}
 
   ContingentResult run() {
@@ -55,7 +79,9 @@ class AndOrSearch {
  private:
   // Result of one action: a tree of branches over the atoms it lets the agent observe.
   struct Outcome {
-    AtomId atom = -1;  // -1: a leaf knowledge state
+    AtomId atom = -1;      // -1: a leaf knowledge state or a value branch
+    FluentId fluent = -1;  // value branch: (= fluent value)
+    double value = 0.0;
     int belief = -1;
     int onTrue = -1;
     int onFalse = -1;
@@ -95,19 +121,28 @@ class AndOrSearch {
     return worst;
   }
 
-  // Splits `belief` eagerly on every atom the agent now knows whether (Figure 3.2's branch(φ)).
+  // Splits `belief` eagerly on every atom the agent now knows whether (Figure 3.2's branch(φ))
+  // and on every sensed value, one (= f value) branch per value the worlds allow.
   int outcome(Belief&& belief, std::vector<Outcome>& out) {
     const AtomId atom = task_.pendingObservation(belief);
     const int index = static_cast<int>(out.size());
     out.push_back({});
-    if (atom < 0) {
+    FluentId fluent = -1;
+    double value = 0.0;
+    if (atom < 0 && !task_.pendingValue(belief, fluent, value)) {
       out[index].belief = intern(std::move(belief));
       return index;
     }
     Belief onTrue;
     Belief onFalse;
-    task_.split(atom, belief, onTrue, onFalse);
+    if (atom >= 0) {
+      task_.split(atom, belief, onTrue, onFalse);
+    } else {
+      task_.splitValue(fluent, value, belief, onTrue, onFalse);
+    }
     out[index].atom = atom;
+    out[index].fluent = fluent;
+    out[index].value = value;
     const int t = outcome(std::move(onTrue), out);
     const int f = outcome(std::move(onFalse), out);
     out[index].onTrue = t;
@@ -122,7 +157,7 @@ class AndOrSearch {
 
   int solveOutcome(const std::vector<Outcome>& outcomes, int index, std::size_t depth) {
     const Outcome& o = outcomes[index];
-    if (o.atom < 0) return solve(o.belief, depth);
+    if (o.belief >= 0) return solve(o.belief, depth);
     const int t = solveOutcome(outcomes, o.onTrue, depth);
     if (t < 0) return -1;
     const int f = solveOutcome(outcomes, o.onFalse, depth);
@@ -130,6 +165,8 @@ class AndOrSearch {
     PlanTree::Node node;
     node.kind = PlanTree::Node::Kind::Branch;
     node.atom = o.atom;
+    node.fluent = o.fluent;
+    node.value = o.value;
     node.next = t;
     node.onFalse = f;
     return addNode(node);
@@ -158,7 +195,8 @@ class AndOrSearch {
       candidate.op = static_cast<int>(op);
       candidate.root = outcome(Belief(next), candidate.outcomes);
       for (const Outcome& o : candidate.outcomes) {
-        if (o.atom < 0) candidate.score = std::max(candidate.score, heuristic(*beliefs_[o.belief]));
+        if (o.belief >= 0)
+          candidate.score = std::max(candidate.score, heuristic(*beliefs_[o.belief]));
       }
       if (candidate.score == Heuristic::kDeadEnd) {
         ++stats_.deadEnds;
@@ -198,10 +236,11 @@ class AndOrSearch {
       int belief;
       int parent;
       int op;
+      long steps;  // actions from `root`
     };
-    std::vector<SearchNode> nodes{{root, -1, -1}};
+    std::vector<SearchNode> nodes{{root, -1, -1, 0}};
     std::unordered_set<int> seen{root};
-    using Entry = std::pair<int, std::size_t>;  // heuristic value, node (first in, first out)
+    using Entry = std::pair<long, std::size_t>;  // priority, node (ties: first in, first out)
     std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
     open.push({0, 0});
     state_[root] = kOnPath;
@@ -229,8 +268,9 @@ class AndOrSearch {
         if (candidate.outcomes.size() == 1) {
           const int child = candidate.outcomes[0].belief;
           if (state_[child] != kOpen || !seen.insert(child).second) continue;
-          nodes.push_back({child, static_cast<int>(index), candidate.op});
-          open.push({candidate.score, nodes.size() - 1});
+          nodes.push_back({child, static_cast<int>(index), candidate.op, nodes[index].steps + 1});
+          open.push(
+              {priority(nodes.back().steps, candidate.score, nodes.size() - 1), nodes.size() - 1});
           continue;
         }
         const int rest = solveOutcome(candidate.outcomes, candidate.root, depth + 1);
@@ -254,12 +294,29 @@ class AndOrSearch {
     return next;
   }
 
+  // Open-list key of a node `steps` actions from the search root, with heuristic value `score`,
+  // the `index`-th generated: smallest first.
+  long priority(long steps, int score, std::size_t index) const {
+    switch (mode_) {
+      case OrMode::Greedy:
+        return score;
+      case OrMode::AStar:
+        return steps + score;
+      case OrMode::BreadthFirst:
+        return steps;
+      case OrMode::DepthFirst:
+        return -static_cast<long>(index);
+    }
+    return score;
+  }
+
   static constexpr char kOpen = 0;
   static constexpr char kOnPath = 1;
   static constexpr char kFailed = 2;
 
   KnowledgeTask& task_;
   const ContingentOptions& options_;
+  OrMode mode_;
   std::unique_ptr<Heuristic> heuristic_;
   std::chrono::steady_clock::time_point start_;
   std::unordered_map<Belief, int, BeliefHash> ids_;
@@ -288,7 +345,28 @@ std::vector<int> inDegrees(const PlanTree& plan) {
   return degree;
 }
 
+// What a branch node tests: "(p a)" or "(= (f a) 3)" (an object-valued term names the object).
+std::string branchTest(const KnowledgeTask& task, const PlanTree::Node& node) {
+  if (node.fluent < 0) return task.task().atomNames[node.atom];
+  std::string value;
+  if (std::isnan(node.value)) {
+    value = "undefined";
+  } else if (!task.task().fluentIsNumeric[node.fluent]) {
+    value = task.contingent().problem.objectNames[static_cast<std::size_t>(node.value)];
+  } else {
+    std::ostringstream text;
+    text << std::setprecision(17) << node.value;
+    value = text.str();
+  }
+  return "(= " + task.task().fluentNames[node.fluent] + " " + value + ")";
+}
+
 }  // namespace
+
+const std::vector<std::string>& contingentSearchModes() {
+  static const std::vector<std::string> names{"gbfs", "astar", "bfs", "dfs"};
+  return names;
+}
 
 ContingentResult solveContingent(KnowledgeTask& task, const ContingentOptions& options) {
   return AndOrSearch(task, options).run();
@@ -357,7 +435,7 @@ std::string formatPlanTree(const KnowledgeTask& task, const PlanTree& plan) {
         index = node.next;
         continue;
       }
-      lines.push_back(pad + "(branch " + task.task().atomNames[node.atom]);
+      lines.push_back(pad + "(branch " + branchTest(task, node));
       lines.push_back(pad + "  (true");
       sequence(node.next, indent + 4);
       lines.back() += ")";
@@ -390,7 +468,7 @@ nlohmann::json planTreeJson(const KnowledgeTask& task, const PlanTree& plan) {
       entry["next"] = node.next;
     } else {
       entry["kind"] = "branch";
-      entry["atom"] = task.task().atomNames[node.atom];
+      entry["atom"] = branchTest(task, node);
       entry["on_true"] = node.next;
       entry["on_false"] = node.onFalse;
     }
@@ -451,8 +529,30 @@ PlanTree parsePlanTree(std::string_view text, const std::string& file, const Kno
       PlanTree::Node node;
       node.kind = PlanTree::Node::Kind::Branch;
       node.pos = item.pos;
-      node.atom = task.findAtom(toString(item.items[1]));
-      if (node.atom < 0) fail(item.items[1], "unknown atom " + toString(item.items[1]));
+      const SExpr& test = item.items[1];
+      if (test.startsWith("=")) {
+        if (test.items.size() != 3 || !test.items[2].isAtom()) {
+          fail(test, "expected '(= (f …) value)'");
+        }
+        node.fluent = task.findFluent(toString(test.items[1]));
+        if (node.fluent < 0)
+          fail(test.items[1], "unknown function term " + toString(test.items[1]));
+        const std::string& written = test.items[2].text;
+        const ObjectId object = task.contingent().problem.findObject(written);
+        if (written == "undefined") {
+          node.value = kUndefined;
+        } else if (!task.task().fluentIsNumeric[node.fluent] && object >= 0) {
+          node.value = object;
+        } else {
+          char* end = nullptr;
+          node.value = std::strtod(written.c_str(), &end);
+          if (end != written.c_str() + written.size())
+            fail(test.items[2], "expected a value: " + written);
+        }
+      } else {
+        node.atom = task.findAtom(toString(test));
+        if (node.atom < 0) fail(test, "unknown atom " + toString(test));
+      }
       node.next = sequence(item.items[2], 1);
       node.onFalse = sequence(item.items[3], 1);
       return add(node);
@@ -507,6 +607,17 @@ TreeValidation validatePlanTree(KnowledgeTask& task, const PlanTree& plan,
       } else {
         failure = walk(node.next, next);
       }
+    } else if (node.fluent >= 0) {
+      if (!task.knowsValue(node.fluent, belief)) {
+        failure = at(node, "branch on " + task.task().fluentNames[node.fluent] +
+                               ", whose value no sensing action observed");
+      } else {
+        Belief equal;
+        Belief other;
+        task.splitValue(node.fluent, node.value, belief, equal, other);
+        if (!equal.empty()) failure = walk(node.next, equal);
+        if (failure.empty() && !other.empty()) failure = walk(node.onFalse, other);
+      }
     } else {
       const std::string& atom = task.task().atomNames[node.atom];
       if (!task.knowsWhether(node.atom, belief)) {
@@ -540,9 +651,10 @@ Execution executePlanTree(KnowledgeTask& task, const PlanTree& plan, std::uint32
       return out;
     }
     if (node.kind == PlanTree::Node::Kind::Branch) {
-      const bool value = task.world(world).atom(node.atom);
-      out.steps.push_back("branch " + task.task().atomNames[node.atom] + " -> " +
-                          (value ? "true" : "false"));
+      const bool value = node.fluent >= 0
+                             ? sameValue(task.world(world).fluent(node.fluent), node.value)
+                             : task.world(world).atom(node.atom);
+      out.steps.push_back("branch " + branchTest(task, node) + " -> " + (value ? "true" : "false"));
       index = value ? node.next : node.onFalse;
       continue;
     }

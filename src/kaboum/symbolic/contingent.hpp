@@ -14,14 +14,17 @@
 namespace kaboum::symbolic {
 
 // A plan as a DAG: an action node continues at `next`; a branch node on `atom` continues at
-// `next` when the atom is observed true and at `onFalse` otherwise; a goal node ends the branch.
+// `next` when the atom is observed true and at `onFalse` otherwise (a branch on a sensed value,
+// `fluent` >= 0, tests (= fluent value) instead); a goal node ends the branch.
 // Nodes reached from several places are solved sub-problems shared between branches.
 struct PlanTree {
   struct Node {
     enum class Kind { Goal, Action, Branch };
     Kind kind = Kind::Goal;
-    int op = -1;       // Action: ground operator
-    AtomId atom = -1;  // Branch: observed atom
+    int op = -1;           // Action: ground operator
+    AtomId atom = -1;      // Branch: observed atom
+    FluentId fluent = -1;  // Branch on a value: sensed function term (atom is -1)
+    double value = 0.0;
     int next = -1;
     int onFalse = -1;
     SourcePos pos;  // where a parsed plan wrote the node
@@ -40,8 +43,14 @@ struct TreeMetrics {
 };
 TreeMetrics measure(const PlanTree& plan);
 
+// Names accepted by ContingentOptions::mode: "gbfs", "astar", "bfs", "dfs" (the core's modes
+// without ids), ordering the search over non-sensing actions between branch points.
+const std::vector<std::string>& contingentSearchModes();
+
 struct ContingentOptions {
-  std::string heuristic = "ff";  // one of heuristicNames(), evaluated per world (maximum)
+  std::string mode = "gbfs";     // one of contingentSearchModes()
+  std::string heuristic = "ff";  // one of heuristicNames(), evaluated per world (maximum);
+                                 // ignored by bfs and dfs
   SearchLimits limits;
   std::size_t maxDepth = 5000;  // nested branch points on one path
 };
@@ -63,8 +72,10 @@ struct ContingentResult {
   ContingentStatistics statistics;
 };
 
-// AND–OR search: greedy best-first search (worst world's heuristic value) over knowledge states
-// until a goal or a sensing action whose branches are all solved by the same search, recursively.
+// AND–OR search: an OR search in `options.mode` (greedy best-first or A* on the worst world's
+// heuristic value, breadth- or depth-first) over knowledge states until a goal or a sensing
+// action whose branches are all solved by the same search, recursively. Throws InputError for an
+// unknown mode or heuristic.
 // Sensing outcomes split eagerly into branch nodes; solved knowledge states are shared, failed
 // ones memoized. Sound; incomplete where a branch fails only because it would loop back to a
 // knowledge state an enclosing search is still solving.

@@ -33,10 +33,18 @@ class Rewriter {
   enum class Context { Effect, Precondition, Goal };
   void queries(SExpr& expr, Context context, bool positive = true) {
     if (!expr.isList() || expr.items.empty()) return;
+    if (context == Context::Effect && databaseUpdate(expr)) {
+      queries(expr, context, positive);
+      return;
+    }
     const bool knowledge = expr.startsWith("kw") || expr.startsWith("kv") || expr.startsWith("k");
     if (knowledge && expr.items.size() == 2 && expr.items[1].isList()) {
       const std::string head = expr.items[0].text;
       SExpr inner = expr.items[1];
+      if (head == "k" && !positive) {
+        notKnown(expr, std::move(inner));
+        return;
+      }
       if (head == "k") {
         expr = std::move(inner);
         queries(expr, context, positive);
@@ -68,8 +76,67 @@ class Rewriter {
 
   std::map<std::string, SourcePos> kwPredicates;
   std::map<std::string, SourcePos> kvFunctions;
+  // Auxiliary predicates over a base predicate: {prefix, base name} -> first use. Prefixes:
+  // "k." / "k-not." (queries K(p) / K(¬p) under a negation), "kf-del." / "kf-del-not." (forget).
+  std::map<std::pair<std::string, std::string>, SourcePos> kfPredicates;
 
  private:
+  // Renames `atom` (p args…) to (PREFIX.p args…) and records the auxiliary predicate.
+  void auxiliary(SExpr& atom, const std::string& prefix) {
+    if (atom.kind != SExpr::Kind::List || atom.items.empty() || !atom.items[0].isAtom() ||
+        atom.startsWith("not")) {
+      fail(file_, atom, "expected an atom, e.g. (p ?x)");
+    }
+    kfPredicates.insert({{prefix, atom.items[0].text}, atom.pos});
+    atom.items[0].text = prefix + atom.items[0].text;
+    atom.items[0].original = atom.items[0].text;
+  }
+
+  // ¬K(p) / ¬K(¬p) ("not known true" / "not known false"): (not (k (p x))) -> (not (k.p x)).
+  void notKnown(SExpr& expr, SExpr inner) {
+    const bool negated = inner.startsWith("not") && inner.items.size() == 2;
+    SExpr atom = negated ? inner.items[1] : std::move(inner);
+    auxiliary(atom, negated ? "k-not." : "k.");
+    expr = std::move(atom);
+  }
+
+  // Explicit database updates (thesis §3.3.1): (add kf φ) -> φ, (add kw (p)) -> (kw (p)),
+  // (add kv (f)) -> (kv (f)), (del kw (p)) -> (not (kw (p))), (del kv (f)) -> (not (kv (f))),
+  // (del kf (p)) -> (kf-del.p), (del kf (not (p))) -> (kf-del-not.p). False if `expr` is not one.
+  bool databaseUpdate(SExpr& expr) {
+    if (expr.items.size() != 3 || !(expr.startsWith("add") || expr.startsWith("del")) ||
+        !expr.items[1].isAtom() || !expr.items[2].isList()) {
+      return false;
+    }
+    const std::string database = expr.items[1].text;
+    const bool add = expr.startsWith("add");
+    if (database != "kf" && database != "kw" && database != "kv") {
+      fail(file_, expr.items[1], "unknown database '" + database + "': expected kf, kw or kv");
+    }
+    SExpr subject = expr.items[2];
+    if (database == "kf") {
+      if (add) {
+        expr = std::move(subject);
+        return true;
+      }
+      const bool negated = subject.startsWith("not") && subject.items.size() == 2;
+      SExpr atom = negated ? subject.items[1] : std::move(subject);
+      auxiliary(atom, negated ? "kf-del-not." : "kf-del.");
+      expr = std::move(atom);
+      return true;
+    }
+    SExpr query;
+    query.kind = SExpr::Kind::List;
+    query.pos = expr.pos;
+    query.items = {atomNode(database, expr.items[1].pos), std::move(subject)};
+    if (add) {
+      expr = std::move(query);
+    } else {
+      expr.items = {atomNode("not", expr.pos), std::move(query)};
+    }
+    return true;
+  }
+
   const std::string& file_;
 };
 
@@ -162,13 +229,15 @@ SExpr* section(SExpr& define, std::string_view key) {
   return nullptr;
 }
 
-// Declares (kw.p …) for observed/queried predicates and (kv.f …) for queried functions.
-void declareKnowledgePredicates(SExpr& define, const Rewriter& rewriter, const std::string& file) {
+// Declares (kw.p …) for observed/queried predicates, (kv.f …) for queried functions and the
+// auxiliary predicates of ¬K queries and Kf deletions (those of the goal's rewriter too).
+void declareKnowledgePredicates(SExpr& define, const Rewriter& rewriter, const std::string& file,
+                                const Rewriter& goalRewriter, const std::string& problemFile) {
   SExpr* predicates = section(define, ":predicates");
   SExpr* functions = section(define, ":functions");
   std::vector<SExpr> added;
   const auto copyDeclaration = [&](SExpr* from, const std::string& name, const std::string& prefix,
-                                   SourcePos use, const char* what) {
+                                   SourcePos use, const char* what, const std::string& where) {
     if (from != nullptr) {
       for (std::size_t i = 1; i < from->items.size(); ++i) {
         const SExpr& declaration = from->items[i];
@@ -182,13 +251,22 @@ void declareKnowledgePredicates(SExpr& define, const Rewriter& rewriter, const s
       }
     }
     throw InputError(
-        locate(file, std::string("undefined ") + what + " '" + name + "'", use.line, use.column));
+        locate(where, std::string("undefined ") + what + " '" + name + "'", use.line, use.column));
   };
   for (const auto& [name, pos] : rewriter.kwPredicates) {
-    copyDeclaration(predicates, name, "kw.", pos, "predicate");
+    copyDeclaration(predicates, name, "kw.", pos, "predicate", file);
   }
   for (const auto& [name, pos] : rewriter.kvFunctions) {
-    copyDeclaration(functions, name, "kv.", pos, "function");
+    copyDeclaration(functions, name, "kv.", pos, "function", file);
+  }
+  std::set<std::string> auxiliaries;
+  for (const auto& [from, where] :
+       {std::pair{&rewriter, &file}, std::pair{&goalRewriter, &problemFile}}) {
+    for (const auto& [key, pos] : from->kfPredicates) {
+      if (auxiliaries.insert(key.first + key.second).second) {
+        copyDeclaration(predicates, key.second, key.first, pos, "predicate", *where);
+      }
+    }
   }
   if (added.empty()) return;
   if (predicates == nullptr) {
@@ -260,25 +338,6 @@ std::vector<SExpr> extractConstraints(SExpr& init) {
 ContingentProblem parseContingent(std::string_view domainText, const std::string& domainFile,
                                   std::string_view problemText, const std::string& problemFile) {
   ContingentProblem out;
-  std::vector<SExpr> domainTop = readSExprs(domainText, domainFile);
-  Rewriter rewriter(domainFile);
-  if (domainTop.size() == 1 && domainTop[0].startsWith("define") && domainTop[0].items.size() > 2) {
-    SExpr& define = domainTop[0];
-    for (std::size_t i = 2; i < define.items.size(); ++i) {
-      SExpr& part = define.items[i];
-      if (part.startsWith(":action")) rewriteAction(part, rewriter, domainFile);
-      if (part.startsWith(":requirements")) {
-        std::erase_if(part.items, [](const SExpr& r) { return r.isAtom(":contingent"); });
-      }
-    }
-    declareKnowledgePredicates(define, rewriter, domainFile);
-    // Some benchmark domains declare constants before their types: declare types first.
-    std::stable_partition(define.items.begin() + 2, define.items.end(), [](const SExpr& part) {
-      return part.startsWith(":requirements") || part.startsWith(":types");
-    });
-  }
-  out.domain = parseDomain(domainTop, domainFile);
-
   std::vector<SExpr> problemTop = readSExprs(problemText, problemFile);
   std::vector<SExpr> constraintExprs;
   Rewriter goalRewriter(problemFile);
@@ -294,6 +353,24 @@ ContingentProblem parseContingent(std::string_view domainText, const std::string
       if (part.startsWith(":goal")) goalRewriter.queries(part, Rewriter::Context::Goal);
     }
   }
+  std::vector<SExpr> domainTop = readSExprs(domainText, domainFile);
+  Rewriter rewriter(domainFile);
+  if (domainTop.size() == 1 && domainTop[0].startsWith("define") && domainTop[0].items.size() > 2) {
+    SExpr& define = domainTop[0];
+    for (std::size_t i = 2; i < define.items.size(); ++i) {
+      SExpr& part = define.items[i];
+      if (part.startsWith(":action")) rewriteAction(part, rewriter, domainFile);
+      if (part.startsWith(":requirements")) {
+        std::erase_if(part.items, [](const SExpr& r) { return r.isAtom(":contingent"); });
+      }
+    }
+    declareKnowledgePredicates(define, rewriter, domainFile, goalRewriter, problemFile);
+    // Some benchmark domains declare constants before their types: declare types first.
+    std::stable_partition(define.items.begin() + 2, define.items.end(), [](const SExpr& part) {
+      return part.startsWith(":requirements") || part.startsWith(":types");
+    });
+  }
+  out.domain = parseDomain(domainTop, domainFile);
   for (const auto& [name, pos] : goalRewriter.kwPredicates) {
     if (out.domain.findPredicate("kw." + name) < 0) {
       throw InputError(locate(problemFile,
@@ -358,6 +435,12 @@ ContingentProblem parseContingent(std::string_view domainText, const std::string
     const std::string& name = out.domain.predicates[p].name;
     if (name.starts_with("kw.")) varying.insert(out.domain.findPredicate(name.substr(3)));
   }
+  for (const auto* from : {&rewriter, &goalRewriter}) {
+    for (const auto& [key, pos] : from->kfPredicates) {
+      varying.insert(out.domain.findPredicate(key.second));
+      varying.insert(out.domain.findPredicate(key.first + key.second));
+    }
+  }
   out.varyingPredicates.assign(varying.begin(), varying.end());
   return out;
 }
@@ -420,7 +503,33 @@ Problem groundingProblem(const ContingentProblem& contingent) {
     // Negative literals too: an atom a constraint names may be true in some world.
     for (const InitialLiteral& literal : constraint.literals) problem.init.push_back(literal.atom);
   }
+  // ¬K query atoms (k.p …) are never true in a world: make every typed instance reachable so the
+  // grounder keeps them as atoms (the worlds are rebuilt from the known atoms without them).
+  const Domain& domain = contingent.domain;
+  for (std::size_t p = 0; p < domain.predicates.size(); ++p) {
+    const std::string& name = domain.predicates[p].name;
+    if (!name.starts_with("k.") && !name.starts_with("k-not.")) continue;
+    const std::vector<int>& types = domain.predicates[p].paramTypes;
+    std::vector<std::vector<ObjectId>> choices;
+    for (const int type : types) choices.push_back(problem.objectsOfType(domain, type));
+    std::vector<ObjectId> args(types.size());
+    const std::function<void(std::size_t)> enumerate = [&](std::size_t i) {
+      if (i == types.size()) {
+        problem.init.push_back({static_cast<int>(p), args});
+        return;
+      }
+      for (const ObjectId object : choices[i]) {
+        args[i] = object;
+        enumerate(i + 1);
+      }
+    };
+    enumerate(0);
+  }
   return problem;
+}
+
+bool bit(std::span<const std::uint64_t> words, AtomId atom) {
+  return (words[atom >> 6] >> (atom & 63)) & 1u;
 }
 
 void setBit(std::span<std::uint64_t> words, AtomId atom, bool value) {
@@ -449,12 +558,13 @@ KnowledgeTask::KnowledgeTask(const ContingentProblem& contingent,
   for (std::size_t o = 0; o < task_.operators.size(); ++o) {
     operatorIds_["(" + task_.operators[o].name + ")"].push_back(static_cast<int>(o));
   }
-  std::unordered_map<std::string, FluentId> fluentIds;
   for (std::size_t f = 0; f < task_.fluentNames.size(); ++f) {
-    fluentIds.emplace(task_.fluentNames[f], static_cast<FluentId>(f));
+    fluentIds_.emplace(task_.fluentNames[f], static_cast<FluentId>(f));
   }
   kwBase_.assign(task_.atomNames.size(), kNotKnowledge);
   kvBase_.assign(task_.atomNames.size(), kNotKnowledge);
+  kQuery_.assign(task_.atomNames.size(), {});
+  forget_.assign(task_.atomNames.size(), {});
   for (std::size_t a = 0; a < task_.atomNames.size(); ++a) {
     const std::string& name = task_.atomNames[a];
     const std::string base = "(" + name.substr(std::min<std::size_t>(4, name.size()));
@@ -463,9 +573,23 @@ KnowledgeTask::KnowledgeTask(const ContingentProblem& contingent,
       kwBase_[a] = it == atomIds_.end() ? kNoBase : it->second;
       knowledgeAtoms_.push_back(static_cast<AtomId>(a));
     } else if (name.starts_with("(kv.")) {
-      const auto it = fluentIds.find(base);
-      kvBase_[a] = it == fluentIds.end() ? kNoBase : it->second;
+      const auto it = fluentIds_.find(base);
+      kvBase_[a] = it == fluentIds_.end() ? kNoBase : it->second;
       knowledgeAtoms_.push_back(static_cast<AtomId>(a));
+    }
+    for (const auto& [prefix, negated] : {std::pair{"(k.", false},
+                                          {"(k-not.", true},
+                                          {"(kf-del.", false},
+                                          {"(kf-del-not.", true}}) {
+      const std::string_view head(prefix);
+      if (!name.starts_with(head)) continue;
+      const auto it = atomIds_.find("(" + name.substr(head.size()));
+      const bool query = head.starts_with("(k.") || head.starts_with("(k-not.");
+      Auxiliary& target = query ? kQuery_[a] : forget_[a];
+      target.base = it == atomIds_.end() ? kNoBase : it->second;
+      target.negated = negated;
+      if (!query) forgetAtoms_.push_back(static_cast<AtomId>(a));
+      break;
     }
   }
   const auto testsOnly = [](const Condition& c) {
@@ -620,8 +744,8 @@ void KnowledgeTask::checkGoalKnowable() {
   for (const std::vector<AtomId>* atoms : {&goal.positive, &goal.negative}) {
     for (const AtomId atom : *atoms) {
       bool value = false;
-      if (touched[atom] || kwBase_[atom] != kNotKnowledge || kvBase_[atom] != kNotKnowledge ||
-          known(atom, initial_, value)) {
+      if (touched[atom] || kQuery_[atom].base != kNotKnowledge || kwBase_[atom] != kNotKnowledge ||
+          kvBase_[atom] != kNotKnowledge || known(atom, initial_, value)) {
         continue;
       }
       const SourcePos pos = contingent_.problem.goal.pos;
@@ -637,6 +761,11 @@ void KnowledgeTask::checkGoalKnowable() {
 AtomId KnowledgeTask::findAtom(const std::string& name) const {
   const auto it = atomIds_.find(name);
   return it == atomIds_.end() ? -1 : it->second;
+}
+
+FluentId KnowledgeTask::findFluent(const std::string& name) const {
+  const auto it = fluentIds_.find(name);
+  return it == fluentIds_.end() ? -1 : it->second;
 }
 
 int KnowledgeTask::findOperator(const std::string& name) const {
@@ -661,10 +790,59 @@ bool KnowledgeTask::kwHolds(AtomId atom, const Belief& belief) {
   return base == kNoBase || known(base, belief, value);
 }
 
+// K(p) for (k.p …), K(¬p) for (k-not.p …); an atom the grounder never reaches is known false.
+bool KnowledgeTask::kQueryHolds(AtomId atom, const Belief& belief) {
+  const Auxiliary& query = kQuery_[atom];
+  bool value = false;
+  if (query.base == kNoBase) return query.negated;
+  return known(query.base, belief, value) && value != query.negated;
+}
+
 bool KnowledgeTask::kvHolds(AtomId atom, const Belief& belief) {
   bool value = false;
   if (known(atom, belief, value) && value) return true;
   return kvBase_[atom] != kNoBase && fluentKnown(kvBase_[atom], belief);
+}
+
+namespace {
+bool sameValue(double a, double b) {
+  return a == b || (std::isnan(a) && std::isnan(b));
+}
+}  // namespace
+
+bool KnowledgeTask::pendingValue(const Belief& belief, FluentId& fluent, double& value) {
+  summarize(belief);
+  for (const AtomId k : knowledgeAtoms_) {
+    const FluentId sensed = kvBase_[k];
+    if (sensed < 0 || !bit(allWorlds_, k)) continue;
+    const double first = world(belief.front()).fluent(sensed);
+    const bool differs = std::any_of(belief.begin(), belief.end(), [&](std::uint32_t w) {
+      return !sameValue(world(w).fluent(sensed), first);
+    });
+    if (!differs) continue;
+    fluent = sensed;
+    value = first;
+    return true;
+  }
+  return false;
+}
+
+bool KnowledgeTask::knowsValue(FluentId fluent, const Belief& belief) {
+  if (fluentKnown(fluent, belief)) return true;
+  summarize(belief);
+  return std::any_of(knowledgeAtoms_.begin(), knowledgeAtoms_.end(),
+                     [&](AtomId k) { return kvBase_[k] == fluent && bit(allWorlds_, k); });
+}
+
+void KnowledgeTask::splitValue(FluentId fluent, double value, const Belief& belief, Belief& equal,
+                               Belief& other) {
+  equal.clear();
+  other.clear();
+  for (const std::uint32_t w : belief) {
+    (sameValue(world(w).fluent(fluent), value) ? equal : other).push_back(w);
+  }
+  if (!equal.empty()) canonicalize(equal);
+  if (!other.empty()) canonicalize(other);
 }
 
 bool KnowledgeTask::fluentKnown(FluentId fluent, const Belief& belief) {
@@ -705,7 +883,9 @@ bool KnowledgeTask::applicable(int op, const Belief& belief) {
 bool KnowledgeTask::holdsAtoms(const Condition& condition, const Belief& belief) {
   bool value = false;
   for (const AtomId atom : condition.positive) {
-    if (kwBase_[atom] != kNotKnowledge) {
+    if (kQuery_[atom].base != kNotKnowledge) {
+      if (!kQueryHolds(atom, belief)) return false;
+    } else if (kwBase_[atom] != kNotKnowledge) {
       if (!kwHolds(atom, belief)) return false;
     } else if (kvBase_[atom] != kNotKnowledge) {
       if (!kvHolds(atom, belief)) return false;
@@ -714,7 +894,9 @@ bool KnowledgeTask::holdsAtoms(const Condition& condition, const Belief& belief)
     }
   }
   for (const AtomId atom : condition.negative) {
-    if (kwBase_[atom] != kNotKnowledge) {
+    if (kQuery_[atom].base != kNotKnowledge) {
+      if (kQueryHolds(atom, belief)) return false;
+    } else if (kwBase_[atom] != kNotKnowledge) {
       if (kwHolds(atom, belief)) return false;
     } else if (kvBase_[atom] != kNotKnowledge) {
       if (kvHolds(atom, belief)) return false;
@@ -739,7 +921,7 @@ bool KnowledgeTask::apply(int op, const Belief& belief, Belief& out) {
   out.clear();
   for (const std::uint32_t w : belief) {
     if (!evaluator_.apply(task_.operators[op], world(w), scratch_)) return false;
-    out.push_back(store(scratch_));
+    storeForgetting(out);
   }
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
@@ -764,12 +946,6 @@ void KnowledgeTask::summarize(const Belief& belief) {
     }
   }
 }
-
-namespace {
-bool bit(const std::vector<std::uint64_t>& words, AtomId atom) {
-  return (words[atom >> 6] >> (atom & 63)) & 1u;
-}
-}  // namespace
 
 // Drops Kw/Kv atoms whose subject is known anyway, so equal knowledge has one representation.
 void KnowledgeTask::canonicalize(Belief& belief) {
@@ -805,6 +981,31 @@ AtomId KnowledgeTask::pendingObservation(const Belief& belief) {
     if (bit(anyWorld_, base) && !bit(allWorlds_, base)) return base;
   }
   return -1;
+}
+
+// del(Kf, p) (thesis §3.3.1): the successor world in `scratch_` is stored without its (kf-del.…)
+// markers, and for each marker every world stored for it so far where p is true (false for
+// kf-del-not) gains a twin where p is false (true), so K(p) (K(¬p)) no longer holds.
+void KnowledgeTask::storeForgetting(Belief& out) {
+  forgotten_.clear();
+  for (const AtomId marker : forgetAtoms_) {
+    if (!bit(scratch_, marker)) continue;
+    setBit(scratch_, marker, false);
+    forgotten_.push_back(marker);
+  }
+  const std::size_t first = out.size();
+  out.push_back(store(scratch_));
+  for (const AtomId marker : forgotten_) {
+    const Auxiliary& forget = forget_[marker];
+    if (forget.base < 0) continue;
+    const std::size_t end = out.size();
+    for (std::size_t i = first; i < end; ++i) {
+      std::copy_n(world(out[i]).words(), scratch_.size(), scratch_.begin());
+      if (bit(scratch_, forget.base) == forget.negated) continue;
+      setBit(scratch_, forget.base, forget.negated);
+      out.push_back(store(scratch_));
+    }
+  }
 }
 
 void KnowledgeTask::split(AtomId atom, const Belief& belief, Belief& onTrue, Belief& onFalse) {
@@ -857,6 +1058,8 @@ bool KnowledgeTask::isGoalIn(std::uint32_t w) {
 
 std::uint32_t KnowledgeTask::applyIn(int op, std::uint32_t w) {
   if (!evaluator_.apply(task_.operators[op], world(w), scratch_)) return PackedSet::kMissing;
+  // Forgetting changes what the agent knows, not the true world.
+  for (const AtomId marker : forgetAtoms_) setBit(scratch_, marker, false);
   return store(scratch_);
 }
 

@@ -1,6 +1,7 @@
 // Knowledge-level planning tasks (thesis §3.3.1, PKS databases Kf/Kw/Kv and primitive queries;
 // seed 003 §III-A). The contingent PDDL dialect (`unknown`, `oneof`, `or` in :init, `:observe`) and
-// explicit PKS operators (`(kw φ)`, `(kv f)`, `(k φ)`) are rewritten onto the core parser and
+// explicit PKS operators (`(kw φ)`, `(kv f)`, `(k φ)`, ¬K as `(not (k φ))`, database updates
+// `(add|del kf|kw|kv φ)`, del(Kf) forgetting) are rewritten onto the core parser and
 // grounder; a knowledge state is the set of worlds consistent with what the agent knows.
 #pragma once
 
@@ -98,6 +99,18 @@ class KnowledgeTask {
   // Splits `belief` on `atom` (branch(φ), Figure 3.2); either side may be empty.
   void split(AtomId atom, const Belief& belief, Belief& onTrue, Belief& onFalse);
 
+  // Kv sensing (thesis §3.3.1): a function term whose value the agent will know at run time
+  // (Kv(f)) but which differs between worlds; `value` is that of the first world. The planner
+  // branches on (= f value), once per value the worlds allow. False if none.
+  bool pendingValue(const Belief& belief, FluentId& fluent, double& value);
+  // Whether a branch on the value of `fluent` may be taken: Kv(f) holds.
+  bool knowsValue(FluentId fluent, const Belief& belief);
+  // Splits `belief` into the worlds where `fluent` equals `value` (undefined equals undefined)
+  // and the others; either side may be empty.
+  void splitValue(FluentId fluent, double value, const Belief& belief, Belief& equal,
+                  Belief& other);
+  FluentId findFluent(const std::string& name) const;  // "(f a)"; -1 if unknown
+
   // The world of a hidden initial state; throws InputError if it is not one the knowledge admits.
   std::uint32_t hiddenWorld(const HiddenState& hidden, const std::string& file);
   // World-level evaluation for simulated execution.
@@ -114,6 +127,8 @@ class KnowledgeTask {
   bool known(AtomId atom, const Belief& belief, bool& value);
   bool kwHolds(AtomId atom, const Belief& belief);
   bool kvHolds(AtomId atom, const Belief& belief);
+  bool kQueryHolds(AtomId atom, const Belief& belief);
+  void storeForgetting(Belief& out);
   bool fluentKnown(FluentId fluent, const Belief& belief);
   bool holdsAtoms(const Condition& condition, const Belief& belief);
   bool allWorlds(const Condition& tests, const Belief& belief);
@@ -132,6 +147,7 @@ class KnowledgeTask {
   std::vector<Condition> preconditionTests_;  // numeric, fluent and attachment tests only
   Condition goalTests_;
   std::unordered_map<std::string, AtomId> atomIds_;
+  std::unordered_map<std::string, FluentId> fluentIds_;
   std::unordered_map<std::string, std::vector<int>> operatorIds_;
   static constexpr AtomId kNotKnowledge = -1;
   // Base of a Kw atom that is never true (so always known false), or of a Kv atom over a static
@@ -140,6 +156,16 @@ class KnowledgeTask {
   std::vector<AtomId> kwBase_;          // per atom: base atom of a (kw.p …) atom
   std::vector<FluentId> kvBase_;        // per atom: fluent of a (kv.f …) atom
   std::vector<AtomId> knowledgeAtoms_;  // all (kw.…) and (kv.…) atoms
+  // Per atom: (k.p …)/(k-not.p …) query K(p)/K(¬p) of `base`; (kf-del.p …)/(kf-del-not.p …)
+  // mark del(Kf, p)/del(Kf, ¬p) in a successor world.
+  struct Auxiliary {
+    AtomId base = kNotKnowledge;
+    bool negated = false;
+  };
+  std::vector<Auxiliary> kQuery_;
+  std::vector<Auxiliary> forget_;
+  std::vector<AtomId> forgetAtoms_;
+  std::vector<AtomId> forgotten_;
   std::vector<std::uint64_t> scratch_;
   std::vector<std::uint64_t> anyWorld_;
   std::vector<std::uint64_t> allWorlds_;
