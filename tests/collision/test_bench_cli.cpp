@@ -11,8 +11,8 @@ namespace {
 
 TEST(BenchCli, ReportsEveryLibraryPerVertexCountAsJson) {
   const ScratchDir dir;
-  const CliResult result =
-      runCli(dir, "bench collision --pairs 40 --runs 1 --vertices 8 16 --json --quiet");
+  const CliResult result = runCli(
+      dir, "bench collision --pairs 40 --runs 1 --vertices 8 16 --section pairs --json --quiet");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_EQ(result.err, "");
   const auto json = nlohmann::json::parse(result.out);
