@@ -1,13 +1,10 @@
 // The collision module's hot paths allocate nothing per call (GJK boolean and distance, warm and
 // cold; robot, scene, predicate and swept checks). Counts global operator new calls around each
-// call; the one replacement of operator new in test_collision lives here — add further collision
-// hot paths to this file.
+// call; the one inclusion of allocation_counter.hpp in test_collision is here — add further
+// collision hot paths to this file.
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
-
+#include "../support/allocation_counter.hpp"
 #include "collision_test_support.hpp"
 #include "kaboum/collision/convex_polytope.hpp"
 #include "kaboum/collision/gjk.hpp"
@@ -17,43 +14,10 @@
 #include "kaboum/collision/swept.hpp"
 #include "kaboum/kinematics/urdf_loader.hpp"
 
-// The replacements below pair malloc/free themselves; GCC cannot see that through inlining.
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-
-namespace {
-std::atomic<long> allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  ++allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-// The nothrow form too (std::get_temporary_buffer uses it): under ASan its own nothrow new would
-// otherwise be paired with the free() below.
-void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
-  ++allocations;
-  return std::malloc(size == 0 ? 1 : size);
-}
-void operator delete(void* p, const std::nothrow_t&) noexcept {
-  std::free(p);
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
-
 namespace kaboum::collision {
 namespace {
 
-template <typename F>
-long allocationsDuring(F&& call) {
-  const long before = allocations.load();
-  call();
-  return allocations.load() - before;
-}
+using kaboum::test::allocationsDuring;
 
 TEST(NoAllocation, GjkQueries) {
   for (const int n : {8, 64}) {

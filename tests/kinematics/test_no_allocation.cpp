@@ -2,45 +2,19 @@
 // evaluation and sampling. Counts global operator new calls around each call.
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
 #include <numbers>
 
+#include "../support/allocation_counter.hpp"
 #include "kaboum/kinematics/arm_ik.hpp"
 #include "kaboum/kinematics/constraint_sampler.hpp"
 #include "kaboum/kinematics/numeric_ik.hpp"
 #include "kaboum/kinematics/urdf_loader.hpp"
 #include "robots.hpp"
 
-// The replacements below pair malloc/free themselves; GCC cannot see that through inlining.
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-
-namespace {
-std::atomic<long> allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  ++allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
-
 namespace kaboum {
 namespace {
 
-template <typename F>
-long allocationsDuring(F&& call) {
-  const long before = allocations.load();
-  call();
-  return allocations.load() - before;
-}
+using kaboum::test::allocationsDuring;
 
 TEST(NoAllocation, KinematicsHotPaths) {
   const RobotModel kr5 = loadUrdf(test::kKr5);
