@@ -1,0 +1,22 @@
+// Verbs that write a generated PDDL domain and problem for a size n (`stacked`, `force-sensing`):
+// the options, the files and the printed paths are the same for all of them.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "verb.hpp"
+
+namespace kaboum::cli {
+
+struct PddlGenerator {
+  std::string fileStem;                       // "stacked" -> stacked-domain.pddl, stacked-N.pddl
+  std::string sizeHelp;                       // help text of the positional n
+  std::function<std::string()> domain;        // the domain text
+  std::function<std::string(int n)> problem;  // the problem text; throws InputError for bad n
+};
+
+// Declares `n`, `--out-dir` and `--quiet` on `command`; the runner writes both files.
+VerbRunner setupPddlGeneratorVerb(CLI::App& command, PddlGenerator generator);
+
+}  // namespace kaboum::cli
