@@ -13,6 +13,7 @@
 #include <memory>
 #include <random>
 
+#include "fcl_shapes.hpp"
 #include "kaboum/collision/robot_collision.hpp"
 #include "kaboum/collision/scene_generator.hpp"
 #include "kaboum/core/error.hpp"
@@ -41,19 +42,6 @@ nlohmann::json stats(std::vector<double> ns) {
           {"median", at(0.5)},
           {"p99", at(0.99)},
           {"max", ns.back()}};
-}
-
-std::shared_ptr<fcl::Convexd> fclConvex(std::span<const Vec3> points) {
-  const ConvexHull hull = convexHull(points, "convex piece");
-  auto vertices = std::make_shared<std::vector<fcl::Vector3d>>(hull.mesh.vertices.begin(),
-                                                               hull.mesh.vertices.end());
-  auto faces = std::make_shared<std::vector<int>>();
-  for (const Triangle& t : hull.mesh.triangles) {
-    faces->insert(faces->end(),
-                  {3, static_cast<int>(t[0]), static_cast<int>(t[1]), static_cast<int>(t[2])});
-  }
-  return std::make_shared<fcl::Convexd>(vertices, static_cast<int>(hull.mesh.triangles.size()),
-                                        faces);
 }
 
 std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>> fclMesh(const TriangleMesh& mesh) {

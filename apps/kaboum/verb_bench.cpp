@@ -20,6 +20,7 @@
 #include <optional>
 
 #include "bench_full_robot.hpp"
+#include "fcl_shapes.hpp"
 #include "kaboum/collision/convex_polytope.hpp"
 #include "kaboum/collision/gjk.hpp"
 #include "kaboum/collision/minkowski_reference.hpp"
@@ -157,18 +158,6 @@ struct PairShapes {
   std::vector<btTransform> bulletPoseA, bulletPoseB;
   std::vector<CcdPolytope> ccdA, ccdB;
 };
-
-std::shared_ptr<fcl::Convexd> fclConvex(const std::vector<Vec3>& points) {
-  const ConvexHull hull = convexHull(points);
-  auto vertices = std::make_shared<std::vector<Vec3>>(hull.mesh.vertices);
-  auto faces = std::make_shared<std::vector<int>>();
-  for (const Triangle& t : hull.mesh.triangles) {
-    faces->insert(faces->end(),
-                  {3, static_cast<int>(t[0]), static_cast<int>(t[1]), static_cast<int>(t[2])});
-  }
-  return std::make_shared<fcl::Convexd>(vertices, static_cast<int>(hull.mesh.triangles.size()),
-                                        faces);
-}
 
 std::unique_ptr<btConvexHullShape> bulletHull(const std::vector<Vec3>& points) {
   auto shape = std::make_unique<btConvexHullShape>();
