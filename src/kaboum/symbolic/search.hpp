@@ -28,6 +28,8 @@ struct SearchOptions {
   std::string heuristic = "ff";  // one of heuristicNames(); ignored by dfs, bfs, ids
   bool preferredOperators = true;
   bool lazy = false;  // gbfs: evaluate states when expanded, not when generated
+  // gbfs: alternate open lists for `heuristic` and the landmark-count heuristic (LAMA-style)
+  bool landmarks = false;
   SearchLimits limits;
 };
 
