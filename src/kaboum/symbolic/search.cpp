@@ -148,7 +148,6 @@ class Search {
     const auto& limits = options_.limits;
     if (result_.statistics.expanded >= limits.expansions)
       throw LimitReached{SearchStatus::NodeLimit};
-    if ((result_.statistics.expanded & 255u) != 0) return;
     if (elapsed() > limits.seconds) throw LimitReached{SearchStatus::TimeLimit};
     if (memoryBytes() > limits.memoryBytes) throw LimitReached{SearchStatus::MemoryLimit};
   }
