@@ -70,7 +70,10 @@ VerbRunner setupPlan(CLI::App& command) {
   command.add_option("--heuristic", options->search.heuristic, "Heuristic for gbfs and astar")
       ->check(CLI::IsMember(symbolic::heuristicNames()))
       ->capture_default_str();
-  command.add_flag("--lazy", options->search.lazy, "gbfs: evaluate states when expanded");
+  command.add_flag("--lazy,!--eager", options->search.lazy,
+                   "gbfs: evaluate states when expanded (default) or when generated (--eager)");
+  command.add_flag("--landmarks,!--no-landmarks", options->search.landmarks,
+                   "gbfs: alternate with the landmark-count heuristic, LAMA-style (default)");
   command.add_flag("--no-preferred", options->noPreferred, "gbfs: ignore preferred operators");
   command.add_option("--time-limit", options->search.limits.seconds, "Search time limit (s)")
       ->check(CLI::PositiveNumber);

@@ -48,6 +48,19 @@ TEST(Cli, PlanJsonHasStatisticsForEveryMode) {
   }
 }
 
+// The default gbfs (lazy, FF alternated with landmark count) and the older single-heuristic eager
+// search selected by --eager --no-landmarks both write plans that validate.
+TEST(Cli, GreedySearchVariantsWritePlansThatValidate) {
+  for (const std::string flags : {"", "--eager --no-landmarks", "--eager", "--heuristic lmcount"}) {
+    const std::string planFile = writeTempFile("variant.plan", "");
+    const auto planned = runCli("plan " + kDomain + " " + kProblem + " --quiet --plan-out " +
+                                planFile + " " + flags);
+    ASSERT_EQ(planned.exitCode, 0) << flags << ": " << planned.output;
+    const auto validated = runCli("validate " + kDomain + " " + kProblem + " " + planFile);
+    EXPECT_EQ(validated.exitCode, 0) << flags << ": " << validated.output;
+  }
+}
+
 TEST(Cli, LimitsEndWithExitCodeOneAndAStatus) {
   const std::string dir = std::filesystem::path(writeTempFile("x", "")).parent_path().string();
   ASSERT_EQ(runCli("stacked 9 --quiet --out-dir " + dir).exitCode, 0);

@@ -32,6 +32,8 @@ SearchOptions options(const std::string& mode, const std::string& heuristic) {
   SearchOptions out;
   out.mode = mode;
   out.heuristic = heuristic;
+  out.lazy = false;  // the single-heuristic eager search (the default is covered by test_landmarks)
+  out.landmarks = false;
   out.limits.seconds = 60;
   return out;
 }

@@ -5,6 +5,8 @@
 #include <functional>
 
 #include "kaboum/core/error.hpp"
+#include "kaboum/symbolic/landmarks.hpp"
+#include "kaboum/symbolic/relaxation.hpp"
 
 namespace kaboum::symbolic {
 namespace {
@@ -22,49 +24,22 @@ class BlindHeuristic : public Heuristic {
   const GroundTask& task_;
 };
 
-// Generalized Dijkstra over unary relaxed operators (one per effect group of each operator, plus
-// one per goal disjunct reaching an artificial goal fact).
+// Generalized Dijkstra over the unary relaxed operators with precondition counters and a bucket
+// queue (Bonet & Geffner's h_max/h_add; FF's relaxed plan from h_add's best supporters).
 class RelaxedHeuristic : public Heuristic {
  public:
   enum class Kind { Max, Add, FF };
 
-  RelaxedHeuristic(const GroundTask& task, Kind kind)
-      : task_(task), kind_(kind), goalFact_(static_cast<int>(task.factCount)) {
-    preStart_.push_back(0);
-    effectStart_.push_back(0);
-    for (std::size_t o = 0; o < task.operators.size(); ++o) {
-      const Operator& op = task.operators[o];
-      addUnary(static_cast<int>(o), {&op.precondition}, op.effect);
-      for (const ConditionalEffect& conditional : op.conditional) {
-        for (const Condition& disjunct : conditional.disjuncts) {
-          addUnary(static_cast<int>(o), {&op.precondition, &disjunct}, conditional.effect);
-        }
-      }
-    }
-    for (const Condition& disjunct : task.goal) {
-      if (!appendPreconditions({&disjunct})) continue;
-      effects_.push_back(goalFact_);
-      finishUnary(-1);
-    }
-    const std::size_t facts = task.factCount + 1;
-    consumerStart_.assign(facts + 1, 0);
-    for (const int fact : pre_) ++consumerStart_[fact + 1];
-    for (std::size_t f = 0; f < facts; ++f) consumerStart_[f + 1] += consumerStart_[f];
-    consumers_.resize(pre_.size());
-    std::vector<int> fill(consumerStart_.begin(), consumerStart_.end() - 1);
-    for (std::size_t u = 0; u + 1 < preStart_.size(); ++u) {
-      for (int i = preStart_[u]; i < preStart_[u + 1]; ++i) {
-        consumers_[fill[pre_[i]]++] = static_cast<int>(u);
-      }
-      if (preStart_[u] == preStart_[u + 1]) unconditional_.push_back(static_cast<int>(u));
-    }
+  RelaxedHeuristic(const GroundTask& task, Kind kind) : relaxed_(task), kind_(kind) {
+    const auto facts = static_cast<std::size_t>(relaxed_.factCount());
+    const auto unaries = static_cast<std::size_t>(relaxed_.unaryCount());
     factCost_.resize(facts);
     supporter_.resize(facts);
-    unsatisfied_.resize(source_.size());
-    for (std::size_t u = 0; u < source_.size(); ++u) {
-      preCount_.push_back(preStart_[u + 1] - preStart_[u]);
+    unsatisfied_.resize(unaries);
+    for (int u = 0; u < relaxed_.unaryCount(); ++u) {
+      preCount_.push_back(static_cast<int>(relaxed_.preconditions(u).size()));
     }
-    operatorCost_.resize(source_.size());
+    operatorCost_.resize(unaries);
     marked_.assign(task.operators.size(), 0);
     factMarked_.assign(facts, 0);
   }
@@ -74,7 +49,7 @@ class RelaxedHeuristic : public Heuristic {
   int evaluate(StateView state, std::vector<int>* preferred) override {
     if (preferred != nullptr) preferred->clear();
     explore(state);
-    const int h = factCost_[goalFact_];
+    const int h = factCost_[relaxed_.goalFact()];
     if (h == kInfinity) return kDeadEnd;
     if (kind_ != Kind::FF) return h;
     return relaxedPlan(preferred);
@@ -82,53 +57,6 @@ class RelaxedHeuristic : public Heuristic {
 
  private:
   static constexpr int kInfinity = std::numeric_limits<int>::max() / 4;
-
-  void pushConditionFacts(const Condition& condition) {
-    for (const AtomId atom : condition.positive) pre_.push_back(atom);
-    for (const FluentTest& test : condition.fluentTests) {
-      if (!test.positive) continue;
-      const int fact = task_.valueFact(test.fluent, test.value);
-      pre_.push_back(fact < 0 ? kUnreachable : fact);
-    }
-  }
-
-  void addUnary(int op, std::initializer_list<const Condition*> conditions,
-                const EffectList& effect) {
-    const std::size_t firstEffect = effects_.size();
-    for (const AtomId atom : effect.adds) effects_.push_back(atom);
-    for (const Assignment& assignment : effect.assignments) {
-      if (!assignment.objectValued) continue;
-      const int fact = task_.valueFact(assignment.target, assignment.object);
-      if (fact >= 0) effects_.push_back(fact);
-    }
-    if (effects_.size() == firstEffect) return;
-    if (!appendPreconditions(conditions)) {
-      effects_.resize(firstEffect);
-      return;
-    }
-    finishUnary(op);
-  }
-
-  // Appends the sorted, distinct precondition facts of `conditions`; false (and nothing appended)
-  // if one of them can never hold.
-  bool appendPreconditions(std::initializer_list<const Condition*> conditions) {
-    const std::size_t firstPre = pre_.size();
-    for (const Condition* condition : conditions) pushConditionFacts(*condition);
-    const auto first = pre_.begin() + static_cast<long>(firstPre);
-    if (std::find(first, pre_.end(), kUnreachable) != pre_.end()) {
-      pre_.resize(firstPre);
-      return false;
-    }
-    std::sort(first, pre_.end());
-    pre_.erase(std::unique(first, pre_.end()), pre_.end());
-    return true;
-  }
-
-  void finishUnary(int op) {
-    source_.push_back(op);
-    preStart_.push_back(static_cast<int>(pre_.size()));
-    effectStart_.push_back(static_cast<int>(effects_.size()));
-  }
 
   void reach(int fact, int cost, int unary) {
     if (cost >= factCost_[fact]) return;
@@ -139,28 +67,17 @@ class RelaxedHeuristic : public Heuristic {
   }
 
   void fire(int unary) {
-    const int cost = operatorCost_[unary] + (source_[unary] >= 0 ? 1 : 0);
-    for (int i = effectStart_[unary]; i < effectStart_[unary + 1]; ++i) {
-      reach(effects_[i], cost, unary);
-    }
+    const int cost = operatorCost_[unary] + (relaxed_.source(unary) >= 0 ? 1 : 0);
+    for (const int fact : relaxed_.effects(unary)) reach(fact, cost, unary);
   }
 
   void explore(StateView state) {
     std::fill(factCost_.begin(), factCost_.end(), kInfinity);
     std::fill(operatorCost_.begin(), operatorCost_.end(), 0);
     std::copy(preCount_.begin(), preCount_.end(), unsatisfied_.begin());
-    const auto atoms = static_cast<AtomId>(task_.atomNames.size());
-    for (AtomId atom = 0; atom < atoms; ++atom) {
-      if (state.atom(atom)) reach(atom, 0, -1);
-    }
-    for (std::size_t f = 0; f < task_.valueFacts.size(); ++f) {
-      if (task_.valueFacts[f].empty()) continue;
-      const double value = state.fluent(static_cast<FluentId>(f));
-      if (std::isnan(value)) continue;
-      const int fact = task_.valueFact(static_cast<FluentId>(f), static_cast<ObjectId>(value));
-      if (fact >= 0) reach(fact, 0, -1);
-    }
-    for (const int unary : unconditional_) fire(unary);
+    relaxed_.stateFacts(state, stateFacts_);
+    for (const int fact : stateFacts_) reach(fact, 0, -1);
+    for (const int unary : relaxed_.unconditional()) fire(unary);
     // Bucket queue over integer costs; the current bucket may grow while it is scanned.
     // (indexed access: reach() may grow buckets_ and move the buckets)
     bool goalReached = false;
@@ -168,13 +85,12 @@ class RelaxedHeuristic : public Heuristic {
       for (std::size_t k = 0; k < buckets_[cost].size(); ++k) {
         const int fact = buckets_[cost][k];
         if (static_cast<std::size_t>(factCost_[fact]) != cost) continue;
-        if (fact == goalFact_) {
+        if (fact == relaxed_.goalFact()) {
           goalReached = true;
           break;
         }
         const int c = static_cast<int>(cost);
-        for (int i = consumerStart_[fact]; i < consumerStart_[fact + 1]; ++i) {
-          const int unary = consumers_[i];
+        for (const int unary : relaxed_.consumers(fact)) {
           operatorCost_[unary] = kind_ == Kind::Max ? std::max(operatorCost_[unary], c)
                                                     : std::min(operatorCost_[unary] + c, kInfinity);
           if (--unsatisfied_[unary] == 0) fire(unary);
@@ -189,7 +105,7 @@ class RelaxedHeuristic : public Heuristic {
   int relaxedPlan(std::vector<int>* preferred) {
     int count = 0;
     stack_.clear();
-    stack_.push_back(goalFact_);
+    stack_.push_back(relaxed_.goalFact());
     touchedFacts_.clear();
     touchedOps_.clear();
     while (!stack_.empty()) {
@@ -199,14 +115,14 @@ class RelaxedHeuristic : public Heuristic {
       factMarked_[fact] = 1;
       touchedFacts_.push_back(fact);
       const int unary = supporter_[fact];
-      const int op = source_[unary];
+      const int op = relaxed_.source(unary);
       if (op >= 0 && marked_[op] == 0) {
         marked_[op] = 1;
         touchedOps_.push_back(op);
         ++count;
         if (preferred != nullptr && operatorCost_[unary] == 0) preferred->push_back(op);
       }
-      for (int i = preStart_[unary]; i < preStart_[unary + 1]; ++i) stack_.push_back(pre_[i]);
+      for (const int pre : relaxed_.preconditions(unary)) stack_.push_back(pre);
     }
     for (const int fact : touchedFacts_) factMarked_[fact] = 0;
     for (const int op : touchedOps_) marked_[op] = 0;
@@ -214,23 +130,18 @@ class RelaxedHeuristic : public Heuristic {
     return count;
   }
 
-  static constexpr int kUnreachable = -1;
-
-  const GroundTask& task_;
+  RelaxedTask relaxed_;
   Kind kind_;
-  int goalFact_;
-  std::vector<int> pre_, preStart_, effects_, effectStart_, source_;
-  std::vector<int> consumers_, consumerStart_, unconditional_;
   std::vector<int> preCount_, factCost_, supporter_, unsatisfied_, operatorCost_;
   std::vector<std::vector<int>> buckets_;
-  std::vector<int> stack_, touchedFacts_, touchedOps_;
+  std::vector<int> stack_, touchedFacts_, touchedOps_, stateFacts_;
   std::vector<std::uint8_t> marked_, factMarked_;
 };
 
 }  // namespace
 
 const std::vector<std::string>& heuristicNames() {
-  static const std::vector<std::string> names = {"ff", "add", "max", "blind"};
+  static const std::vector<std::string> names = {"ff", "add", "max", "blind", "lmcount"};
   return names;
 }
 
@@ -239,7 +150,8 @@ std::unique_ptr<Heuristic> makeHeuristic(const std::string& name, const GroundTa
   if (name == "add") return std::make_unique<RelaxedHeuristic>(task, RelaxedHeuristic::Kind::Add);
   if (name == "max") return std::make_unique<RelaxedHeuristic>(task, RelaxedHeuristic::Kind::Max);
   if (name == "blind") return std::make_unique<BlindHeuristic>(task);
-  throw InputError("unknown heuristic '" + name + "' (expected ff, add, max or blind)");
+  if (name == "lmcount") return std::make_unique<LandmarkCountHeuristic>(task);
+  throw InputError("unknown heuristic '" + name + "' (expected ff, add, max, blind or lmcount)");
 }
 
 }  // namespace kaboum::symbolic

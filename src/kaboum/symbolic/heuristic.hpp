@@ -24,7 +24,7 @@ class Heuristic {
   virtual bool admissible() const = 0;
 };
 
-// Names accepted by makeHeuristic: "ff", "add", "max", "blind".
+// Names accepted by makeHeuristic: "ff", "add", "max", "blind", "lmcount" (landmarks.hpp).
 const std::vector<std::string>& heuristicNames();
 // Throws InputError for an unknown name.
 std::unique_ptr<Heuristic> makeHeuristic(const std::string& name, const GroundTask& task);

@@ -92,7 +92,10 @@ class Search {
                        "' (expected dfs, bfs, ids, gbfs or astar)");
     }
     if (options_.mode == "gbfs" || options_.mode == "astar") {
-      heuristic_ = makeHeuristic(options_.heuristic, task_);
+      heuristics_.push_back(makeHeuristic(options_.heuristic, task_));
+    }
+    if (options_.mode == "gbfs" && options_.landmarks && options_.heuristic != "lmcount") {
+      heuristics_.push_back(makeHeuristic("lmcount", task_));
     }
     try {
       evaluator_.initialState(scratch_);
@@ -145,7 +148,6 @@ class Search {
     const auto& limits = options_.limits;
     if (result_.statistics.expanded >= limits.expansions)
       throw LimitReached{SearchStatus::NodeLimit};
-    if ((result_.statistics.expanded & 255u) != 0) return;
     if (elapsed() > limits.seconds) throw LimitReached{SearchStatus::TimeLimit};
     if (memoryBytes() > limits.memoryBytes) throw LimitReached{SearchStatus::MemoryLimit};
   }
@@ -177,10 +179,11 @@ class Search {
     std::reverse(result_.plan.begin(), result_.plan.end());
   }
 
-  int evaluate(StateId state, std::vector<int>* preferred) {
-    if (h_[state] < 0 || preferred != nullptr) {
+  // The first heuristic's value of `state`, computed once.
+  int evaluate(StateId state) {
+    if (h_[state] < 0) {
       ++result_.statistics.evaluated;
-      h_[state] = heuristic_->evaluate(view(state), preferred);
+      h_[state] = heuristics_.front()->evaluate(view(state), nullptr);
       if (h_[state] == Heuristic::kDeadEnd) ++result_.statistics.deadEnds;
     }
     return h_[state];
@@ -289,54 +292,90 @@ class Search {
   };
   using Queue = std::priority_queue<Entry, std::vector<Entry>, std::greater<>>;
 
-  // Greedy best-first search with an open list for all states and one for states reached by
-  // preferred operators, alternated, with the preferred list boosted on progress (as in Fast
-  // Downward's eager/lazy greedy search). Lazy: successors inherit the parent's value and are
-  // evaluated when expanded.
+  // Evaluates `state` with every heuristic into values_; the union of their preferred operators
+  // goes into `preferred` (if non-null) and is flagged in isPreferred_. False at a dead end.
+  bool evaluateAll(StateId state, std::vector<int>* preferred) {
+    values_.clear();
+    if (preferred != nullptr) preferred->clear();
+    for (const auto& heuristic : heuristics_) {
+      ++result_.statistics.evaluated;
+      const int h = heuristic->evaluate(view(state), preferred ? &ownPreferred_ : nullptr);
+      values_.push_back(h);
+      if (h == Heuristic::kDeadEnd) break;
+      if (preferred == nullptr) continue;
+      for (const int op : ownPreferred_) {
+        if (isPreferred_[op] == 0) preferred->push_back(op);
+        isPreferred_[op] = 1;
+      }
+    }
+    if (values_.back() != Heuristic::kDeadEnd) return true;
+    ++result_.statistics.deadEnds;
+    if (preferred != nullptr) {
+      for (const int op : *preferred) isPreferred_[op] = 0;
+      preferred->clear();
+    }
+    return false;
+  }
+
+  // Greedy best-first search with two open lists per heuristic (all states; states reached by a
+  // preferred operator), alternated, with the preferred lists boosted whenever a heuristic value
+  // improves (as in Fast Downward's eager/lazy greedy search and LAMA). Lazy: successors are
+  // queued with the parent's values and evaluated when expanded.
   void greedyBestFirst() {
-    std::array<Queue, 2> open;
-    std::array<int, 2> priority{0, 0};
+    const std::size_t queues = 2 * heuristics_.size();
+    std::vector<Queue> open(queues);
+    std::vector<int> priority(queues, 0);
     std::vector<std::uint8_t> closed;
     std::vector<int> preferred;
-    std::vector<std::uint8_t> isPreferred(task_.operators.size(), 0);
+    isPreferred_.assign(task_.operators.size(), 0);
     std::size_t order = 0;
     const bool usePreferred = options_.preferredOperators;
-    const int h0 = evaluate(0, nullptr);
-    if (h0 == Heuristic::kDeadEnd) return;
-    int best = h0;
-    open[0].push({h0, 0, order++, 0});
-    while (!open[0].empty() || !open[1].empty()) {
-      int which = 0;
-      if (open[0].empty() || (!open[1].empty() && priority[1] < priority[0])) which = 1;
+    if (!evaluateAll(0, nullptr)) return;
+    std::vector<int> best = values_;
+    for (std::size_t i = 0; i < heuristics_.size(); ++i) open[2 * i].push({best[i], 0, order++, 0});
+    while (true) {
+      std::size_t which = queues;
+      for (std::size_t q = 0; q < queues; ++q) {
+        if (!open[q].empty() && (which == queues || priority[q] < priority[which])) which = q;
+      }
+      if (which == queues) return;
       ++priority[which];
-      const Entry entry = open[which].top();
+      const StateId state = open[which].top().state;
       open[which].pop();
-      const StateId state = entry.state;
       if (state < closed.size() && closed[state] != 0) continue;
       if (closed.size() <= state) closed.resize(registry_.size(), 0);
       closed[state] = 1;
-      const int h = evaluate(state, usePreferred ? &preferred : nullptr);
-      if (h == Heuristic::kDeadEnd) continue;
-      if (h < best) {
-        best = h;
-        priority[1] -= 1000;
+      if (!evaluateAll(state, usePreferred ? &preferred : nullptr)) continue;
+      bool progress = false;
+      for (std::size_t i = 0; i < best.size(); ++i) {
+        if (values_[i] < best[i]) {
+          best[i] = values_[i];
+          progress = true;
+        }
       }
-      for (const int op : preferred) isPreferred[op] = 1;
+      if (progress) {
+        for (std::size_t q = 1; q < queues; q += 2) priority[q] -= 1000;
+      }
+      parentValues_ = values_;
       expand(state);
       for (const auto& [op, successor, isNew] : successors_) {
         if (!isNew) continue;
         link(successor, state, op);
         if (evaluator_.isGoal(view(successor))) {
-          for (const int p : preferred) isPreferred[p] = 0;
+          for (const int p : preferred) isPreferred_[p] = 0;
           return solved(successor);
         }
-        const int key = options_.lazy ? h : evaluate(successor, nullptr);
-        if (key == Heuristic::kDeadEnd) continue;
-        open[0].push({key, 0, order++, successor});
-        if (usePreferred && isPreferred[op] != 0) open[1].push({key, 0, order++, successor});
+        if (!options_.lazy && !evaluateAll(successor, nullptr)) continue;
+        const std::vector<int>& keys = options_.lazy ? parentValues_ : values_;
+        const bool viaPreferred = usePreferred && isPreferred_[op] != 0;
+        for (std::size_t i = 0; i < heuristics_.size(); ++i) {
+          open[2 * i].push({keys[i], 0, order++, successor});
+          if (viaPreferred) open[2 * i + 1].push({keys[i], 0, order++, successor});
+        }
       }
-      for (const int p : preferred) isPreferred[p] = 0;
-      openBytes_ = (open[0].size() + open[1].size()) * sizeof(Entry) + closed.capacity();
+      for (const int p : preferred) isPreferred_[p] = 0;
+      openBytes_ = closed.capacity();
+      for (const Queue& queue : open) openBytes_ += queue.size() * sizeof(Entry);
     }
   }
 
@@ -345,7 +384,7 @@ class Search {
   void astar() {
     Queue open;
     std::size_t order = 0;
-    const int h0 = evaluate(0, nullptr);
+    const int h0 = evaluate(0);
     if (h0 == Heuristic::kDeadEnd) return;
     open.push({h0, h0, order++, 0});
     std::vector<std::uint8_t> closed;
@@ -363,7 +402,7 @@ class Search {
         const int g = g_[state] + 1;
         if (!isNew && (successor == 0 || g >= g_[successor])) continue;
         link(successor, state, op);
-        const int h = evaluate(successor, nullptr);
+        const int h = evaluate(successor);
         if (h == Heuristic::kDeadEnd) continue;
         open.push({g + h, h, order++, successor});
       }
@@ -384,7 +423,9 @@ class Search {
   PackedSet registry_;
   std::vector<std::uint64_t> scratch_;
   std::chrono::steady_clock::time_point start_;
-  std::unique_ptr<Heuristic> heuristic_;
+  std::vector<std::unique_ptr<Heuristic>> heuristics_;
+  std::vector<int> values_, parentValues_, ownPreferred_;
+  std::vector<std::uint8_t> isPreferred_;
   std::vector<StateId> parent_;
   std::vector<int> op_, g_, h_;
   std::vector<int> applicable_;

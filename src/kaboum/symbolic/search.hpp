@@ -27,7 +27,9 @@ struct SearchOptions {
   std::string mode = "gbfs";     // one of searchModes()
   std::string heuristic = "ff";  // one of heuristicNames(); ignored by dfs, bfs, ids
   bool preferredOperators = true;
-  bool lazy = false;  // gbfs: evaluate states when expanded, not when generated
+  bool lazy = true;  // gbfs: evaluate states when expanded, not when generated
+  // gbfs: alternate open lists for `heuristic` and the landmark-count heuristic (LAMA-style)
+  bool landmarks = true;
   SearchLimits limits;
 };
 
