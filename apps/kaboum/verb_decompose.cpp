@@ -18,7 +18,7 @@ namespace {
 struct DecomposeArgs {
   std::string input, output;
   std::string epsilon = "3%";
-  std::size_t maxPieces = 12;
+  std::size_t maxPieces = 11;
   std::size_t samples = 100000;
   bool json = false;
   bool quiet = false;

@@ -32,13 +32,14 @@ static_assert(kBoundShare + kConcavityShare + kSimplifyShare <= 1.0);
 
 constexpr int kCutsPerAxis = 5;  // evenly spaced candidate planes per axis, plus one at the worst
                                  // concavity sample
-constexpr std::size_t kSplitBeyondLimit = 2;  // split up to this many times the piece limit
+constexpr std::size_t kSplitBeyondLimit = 3;  // split up to this many times the piece limit
 // A cell whose concavity survived this many splits in a row (each keeping more than kStallRatio
 // of it) is not split further: the splits are better spent elsewhere (a round pocket, say, needs
 // more cuts through it than the piece limit allows).
-constexpr int kMaxStalls = 3;
+constexpr int kMaxStalls = 8;
 constexpr double kStallRatio = 0.9;
 constexpr std::size_t kShortlist = 1;  // least-volume cuts whose children's concavity is measured
+constexpr int kPocketNormals = 6;  // cut planes through the worst sample, turned about its depth
 
 double meshVolume(const TriangleMesh& mesh) {
   double sixVolume = 0.0;
@@ -57,6 +58,7 @@ class Solid {
   [[nodiscard]] bool contains(const Vec3& p) const {
     return bvh_.closest(p).distance <= tolerance_ || bvh_.contains(p);
   }
+  [[nodiscard]] Vec3 closestPoint(const Vec3& p) const { return bvh_.closest(p).point; }
   // Largest distance to the solid over `samples` (0 for samples inside), and where it occurs.
   [[nodiscard]] std::pair<double, Vec3> largestDistance(const std::vector<Vec3>& samples) const {
     double worst = 0.0;
@@ -269,11 +271,29 @@ std::vector<Vec3> cutAxes(const Cell& cell) {
   return axes;
 }
 
+// Normals of planes through the cell's worst concavity sample w that contain its depth direction
+// (from w to the nearest point of the solid), kPocketNormals of them evenly turned about it: one of
+// them cuts the pocket or bore under w through its middle, whatever its orientation (V-HACD and
+// CoACD search cut planes through the most concave points in the same spirit).
+std::vector<Vec3> pocketNormals(const Cell& cell, const Solid& solid) {
+  const Vec3 depth = solid.closestPoint(cell.worstPoint) - cell.worstPoint;
+  if (!(depth.norm() > 0.0)) return {};
+  const Vec3 d = depth.normalized();
+  const Vec3 u = d.unitOrthogonal(), v = d.cross(u);
+  std::vector<Vec3> normals;
+  for (int k = 0; k < kPocketNormals; ++k) {
+    const double angle = M_PI * k / kPocketNormals;
+    normals.push_back(std::cos(angle) * u + std::sin(angle) * v);
+  }
+  return normals;
+}
+
 // The split of `cell` whose children's larger concavity is smallest, among the kShortlist
 // candidate cuts with the smallest total hull volume (the hull volume beyond the solid's is what
 // concavity grows with, and it is cheap to compare) and the cuts through the worst concavity
 // sample; nothing when no candidate cuts it in two. The children come with their concavity
-// measured and their polygons clipped. Candidates are axis-parallel and principal-axis planes.
+// measured and their polygons clipped. Candidates: axis-parallel and principal-axis planes at
+// evenly spaced positions and through the worst sample, and the pocket planes through it.
 std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& context,
                                                std::uint64_t& measured) {
   struct Candidate {
@@ -281,6 +301,13 @@ std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& 
     bool throughWorst;  // the cut passes through the cell's worst concavity sample
   };
   std::vector<Candidate> candidates;
+  const auto tryCut = [&](const Vec3& normal, double position, bool throughWorst) {
+    auto below = childCell(cell, HullPlane{normal, position}, context);
+    if (!below) return;
+    auto above = childCell(cell, HullPlane{-normal, -position}, context);
+    if (!above) return;
+    candidates.push_back({std::move(*below), std::move(*above), throughWorst});
+  };
   for (const Vec3& axis : cutAxes(cell)) {
     double lo = std::numeric_limits<double>::infinity();
     double hi = -lo;
@@ -288,19 +315,14 @@ std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& 
       lo = std::min(lo, axis.dot(v));
       hi = std::max(hi, axis.dot(v));
     }
-    std::vector<double> positions;
     for (int k = 1; k <= kCutsPerAxis; ++k) {
-      positions.push_back(lo + (hi - lo) * k / (kCutsPerAxis + 1));
+      tryCut(axis, lo + (hi - lo) * k / (kCutsPerAxis + 1), false);
     }
     const double worst = axis.dot(cell.worstPoint);
-    if (worst > lo + 0.02 * (hi - lo) && worst < hi - 0.02 * (hi - lo)) positions.push_back(worst);
-    for (const double position : positions) {
-      auto below = childCell(cell, HullPlane{axis, position}, context);
-      if (!below) continue;
-      auto above = childCell(cell, HullPlane{-axis, -position}, context);
-      if (!above) continue;
-      candidates.push_back({std::move(*below), std::move(*above), position == worst});
-    }
+    if (worst > lo + 0.02 * (hi - lo) && worst < hi - 0.02 * (hi - lo)) tryCut(axis, worst, true);
+  }
+  for (const Vec3& normal : pocketNormals(cell, context.solid)) {
+    tryCut(normal, normal.dot(cell.worstPoint), true);
   }
   if (candidates.empty()) return std::nullopt;
   const auto volume = [](const Candidate& c) { return c.below.hullVolume + c.above.hullVolume; };
@@ -350,46 +372,42 @@ bool boxesTouch(const Cell& a, const Cell& b, double tolerance) {
   return first.intersects(box(b));
 }
 
-// Greedy merging of neighbouring pieces, the pair adding the least hull volume first: forced
-// while there are more than `maxPieces`, afterwards only when the merged piece's concavity stays
-// within `budget`. Returns the number of merges.
+// Greedy merging of neighbouring pieces (touching bounding boxes), the pair whose merged piece
+// has the smallest concavity first: forced while there are more than `maxPieces`, afterwards only
+// while that concavity stays within `budget`. Returns the number of merges.
 std::size_t mergeNeighbours(std::vector<Cell>& cells, std::size_t maxPieces, double budget,
                             const Context& context, double tolerance, std::uint64_t& measured) {
-  constexpr double kNoPair = std::numeric_limits<double>::infinity();
   const std::size_t n = cells.size();
   std::vector<bool> alive(n, true);
-  std::vector<double> addedVolume(n * n, kNoPair);  // [i * n + j], i < j
+  std::vector<std::optional<Cell>> pairs(n * n);  // [i * n + j], i < j: the merged piece
   const auto price = [&](std::size_t i, std::size_t j) {
+    auto& pair = pairs[i * n + j];
+    pair.reset();
     if (!boxesTouch(cells[i], cells[j], tolerance)) return;
-    const auto merged = mergedCell(cells[i], cells[j], context.snap);
-    if (merged)
-      addedVolume[i * n + j] = merged->hullVolume - cells[i].hullVolume - cells[j].hullVolume;
+    pair = mergedCell(cells[i], cells[j], context.snap);
+    if (pair) measureConcavity(*pair, context, measured++);
   };
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = i + 1; j < n; ++j) price(i, j);
   }
   std::size_t count = n, merges = 0;
   while (true) {
-    const auto best = std::min_element(addedVolume.begin(), addedVolume.end());
-    if (*best == kNoPair) break;
-    const auto index = static_cast<std::size_t>(best - addedVolume.begin());
-    const std::size_t i = index / n, j = index % n;
-    Cell merged = *mergedCell(cells[i], cells[j], context.snap);  // priced, so it has a hull
-    measureConcavity(merged, context, measured++);
-    if (count <= maxPieces && merged.concavity > budget) {
-      *best = kNoPair;  // rejected
-      continue;
+    std::size_t best = pairs.size();
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      if (pairs[k] && (best == pairs.size() || pairs[k]->concavity < pairs[best]->concavity)) {
+        best = k;
+      }
     }
-    cells[i] = std::move(merged);
+    if (best == pairs.size()) break;
+    if (count <= maxPieces && pairs[best]->concavity > budget) break;
+    const std::size_t i = best / n, j = best % n;
+    cells[i] = std::move(*pairs[best]);
     alive[j] = false;
     --count;
     ++merges;
     for (std::size_t k = 0; k < n; ++k) {
-      addedVolume[std::min(k, j) * n + std::max(k, j)] = kNoPair;
-      if (k != i && alive[k]) {
-        addedVolume[std::min(k, i) * n + std::max(k, i)] = kNoPair;
-        price(std::min(k, i), std::max(k, i));
-      }
+      pairs[std::min(k, j) * n + std::max(k, j)].reset();
+      if (k != i && alive[k]) price(std::min(k, i), std::max(k, i));
     }
   }
   std::size_t kept = 0;

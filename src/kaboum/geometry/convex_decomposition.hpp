@@ -19,7 +19,7 @@ struct DecompositionOptions {
   // 0, `epsilonPercent` of the input's bounding-box diagonal.
   double epsilon = 0.0;
   double epsilonPercent = 3.0;
-  std::size_t maxPieces = 12;  // splitting stops here even if ε is not reached
+  std::size_t maxPieces = 11;  // splitting stops here even if ε is not reached
   // Random surface samples of every candidate piece's hull for its concavity (plus its vertices
   // and edge midpoints).
   std::size_t concavitySamples = 600;
