@@ -64,7 +64,8 @@ class RobotSweep {
                                                  const CollisionScene& scene, double margin,
                                                  double epsilon);
 
-  // Swept self-collision: whether two active parts the robot's filter does not exempt come within
+  // Swept self-collision (§4.5, Eq. 4.19–4.22 applied to pairs of the robot's own parts, with its
+  // collision filter): whether two active parts the robot's filter does not exempt come within
   // `margin` of each other at the same instant of qa -> qb. Each pair is compared sub-step by
   // sub-step over the finer of its two subdivisions, with both parts swept over the same time
   // interval and queried at margin + 2ε; an interval whose swept pieces meet is bisected (fresh
@@ -86,12 +87,12 @@ class RobotSweep {
   }
   // Subdivisions per part and forward kinematics at the finest one's samples; returns the finest.
   std::size_t sample(std::span<const double> qa, std::span<const double> qb, double epsilon);
-  // Whether parts i and j, both swept over `interval` of qa -> qb, come within `reach`, refining
-  // by bisection from `depth` on.
   struct Interval {  // [t0, t1] of the motion qa -> qb, with the link poses at both ends
     double t0, t1;
     std::span<const Pose> start, end;
   };
+  // Whether parts i and j, both swept over `interval` of qa -> qb, come within `reach`, refining
+  // by bisection from `depth` on.
   bool partsMeetDuring(std::size_t i, std::size_t j, std::span<const double> qa,
                        std::span<const double> qb, const Interval& interval, int depth,
                        double reach);
@@ -104,7 +105,7 @@ class RobotSweep {
   std::vector<int> subdivisions_;  // per part
   std::vector<Pose> poses_;        // samples x links
   std::vector<Pose> midPoses_;     // kSelfRefinements x links: bisection samples, one per depth
-  std::vector<Piece> piecesI_, piecesJ_;  // scratch of selfCollides
+  std::vector<Piece> piecesI_, piecesJ_;  // scratch: one part's pieces over one sub-step
   std::vector<double> q_;
   std::vector<Piece> pieces_;
   std::size_t samples_ = 0;
