@@ -1,6 +1,6 @@
 // Full-robot collision checks (issue 3): the KR5's convex pieces against 50 random convex
-// obstacles, self-collision, swept motions and isInside. The side-by-side comparison with FCL is
-// `kaboum bench collision --robot` (apps/kaboum/bench_full_robot.cpp).
+// obstacles, self-collision, swept motions, swept self-collision and isInside. The side-by-side
+// comparison with FCL is `kaboum bench collision --robot` (apps/kaboum/bench_full_robot.cpp).
 #include <benchmark/benchmark.h>
 
 #include <random>
@@ -85,6 +85,22 @@ void BM_Kr5SweptMotion(benchmark::State& state) {
       static_cast<double>(samples) / static_cast<double>(state.iterations());
 }
 BENCHMARK(BM_Kr5SweptMotion)->Arg(1000)->Arg(4000);
+
+// Swept self-collision (RobotSweep::selfCollides) along the same motions, ε in µm.
+void BM_Kr5SweptSelfCollision(benchmark::State& state) {
+  const Kr5World& w = world();
+  RobotSweep sweep(w.robot);
+  const double epsilon = static_cast<double>(state.range(0)) * 1e-6;
+  std::size_t i = 0, hits = 0;
+  for (auto _ : state) {
+    const auto& qa = w.configurations[i % w.configurations.size()];
+    const auto& qb = w.configurations[(i + 1) % w.configurations.size()];
+    hits += sweep.selfCollides(qa, qb, 0.0, epsilon) ? 1 : 0;
+    ++i;
+  }
+  state.counters["colliding"] = static_cast<double>(hits) / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_Kr5SweptSelfCollision)->Arg(1000)->Arg(4000);
 
 void BM_IsInside(benchmark::State& state) {
   const Kr5World& w = world();

@@ -70,6 +70,11 @@ TEST(NoAllocation, CollisionHotPaths) {
   EXPECT_EQ(allocationsDuring(
                 [&] { any |= sweep.firstSceneCollision(qa, qb, scene, 0, 0.001).has_value(); }),
             0);
+  any |= sweep.selfCollides(qa, qb, 0, 0.001);  // grows the refinement buffers once
+  EXPECT_EQ(allocationsDuring([&] { any |= sweep.selfCollides(qa, qb, 0, 0.001); }), 0);
+  CollisionScene moving = scene;
+  EXPECT_EQ(allocationsDuring([&] { moving.setPose(3, Pose(Eigen::Translation3d(0.1, 0, 0))); }),
+            0);
   (void)any;
 }
 

@@ -105,6 +105,95 @@ TEST(RobotSweep, StepsShrinkWithEpsilonAndAStillRobotNeedsOne) {
   EXPECT_GE(sweep.sampleCount(), 2 * coarse - 1) << "Proposition 3: 4x precision, 2x samples";
 }
 
+// Exact self-collision checks (margin 0) at `samples` + 1 evenly spaced configurations; returns the
+// first colliding sample, or -1.
+int firstSelfCollidingSample(const RobotCollisionModel& robot, std::span<const double> qa,
+                             std::span<const double> qb, int samples) {
+  std::vector<Pose> poses(robot.model().links().size());
+  std::vector<double> q(qa.size());
+  for (int s = 0; s <= samples; ++s) {
+    for (std::size_t v = 0; v < q.size(); ++v) q[v] = qa[v] + s * (qb[v] - qa[v]) / samples;
+    robot.model().linkPoses(q, poses);
+    if (robot.selfCollides(poses, 0.0)) return s;
+  }
+  return -1;
+}
+
+// The KR5 with the pair its hulls overlap in at home (forearm and palm around the wrist) allowed.
+RobotCollisionModel kr5AllowingHomeOverlaps() {
+  RobotCollisionModel robot(loadUrdf(test::kKr5));
+  std::vector<Pose> poses(robot.model().links().size());
+  robot.model().linkPoses(std::vector<double>(6, 0.0), poses);
+  robot.allowPairsCollidingAt(poses);
+  return robot;
+}
+
+TEST(RobotSweep, SelfCollisionOnlyInTheMiddleOfAMotionIsCaught) {
+  const RobotCollisionModel robot = kr5AllowingHomeOverlaps();
+  RobotSweep sweep(robot);
+  // Found by random search: shoulder, elbow and wrist pitch move, the palm passes through the
+  // base between two self-collision-free end configurations.
+  const std::vector<double> qa{2.723, -1.592, 0.895, -2.127, 1.829, 5.203};
+  const std::vector<double> qb{2.723, -1.385, -2.445, -2.127, 1.304, 5.203};
+  ASSERT_EQ(firstSelfCollidingSample(robot, qa, qa, 1), -1);
+  ASSERT_EQ(firstSelfCollidingSample(robot, qb, qb, 1), -1);
+  ASSERT_GT(firstSelfCollidingSample(robot, qa, qb, 400), 0);
+  for (const double epsilon : {0.001, 0.005, 0.02}) {
+    EXPECT_TRUE(sweep.selfCollides(qa, qb, 0.0, epsilon)) << "epsilon " << epsilon;
+  }
+}
+
+TEST(RobotSweep, DenseSamplingNeverFindsASelfCollisionTheSweepCalledFree) {
+  const RobotCollisionModel robot = kr5AllowingHomeOverlaps();
+  RobotSweep sweep(robot);
+  std::mt19937_64 rng(21);
+#if defined(__SANITIZE_ADDRESS__)
+  const int motions = 60;
+#else
+  const int motions = 400;
+#endif
+  const double epsilon = 0.005;
+  const int samples = 400;
+  int swept = 0, sampled = 0, loose = 0;
+  for (int m = 0; m < motions; ++m) {
+    const auto qa = randomQ(robot.model(), rng), qb = randomQ(robot.model(), rng);
+    const bool sweptHit = sweep.selfCollides(qa, qb, 0.0, epsilon);
+    const int first = firstSelfCollidingSample(robot, qa, qb, samples);
+    if (first >= 0) {
+      EXPECT_TRUE(sweptHit) << "motion " << m << " self-collides at sample " << first;
+    } else if (sweptHit) {
+      // Single-sided ε: a "collides" must come within 2ε (plus what the samples skip).
+      std::vector<Pose> poses(robot.model().links().size());
+      std::vector<double> q(qa.size());
+      bool near = false;
+      for (int s = 0; s <= samples && !near; ++s) {
+        for (std::size_t v = 0; v < q.size(); ++v) q[v] = qa[v] + s * (qb[v] - qa[v]) / samples;
+        robot.model().linkPoses(q, poses);
+        near = robot.selfCollides(poses, 3 * epsilon);
+      }
+      loose += !near;
+    }
+    swept += sweptHit;
+    sampled += first >= 0;
+  }
+  EXPECT_GT(sampled, motions / 10);
+  EXPECT_LT(swept, motions);
+  EXPECT_LE(loose, motions / 100) << "self-collisions reported farther than 3 epsilon";
+}
+
+TEST(RobotSweep, SelfCollisionFollowsTheFilter) {
+  RobotCollisionModel robot(loadUrdf(test::kKr5));
+  RobotSweep sweep(robot);
+  // The elbow folds back onto the base between these two configurations.
+  const std::vector<double> qa{0, 1.5, 0, 0, 0, 0}, qb{0, 1.5, 2.7, 0, 0, 0};
+  ASSERT_GE(firstSelfCollidingSample(robot, qa, qb, 100), 0);
+  EXPECT_TRUE(sweep.selfCollides(qa, qb, 0.0, 0.002));
+  for (std::size_t i = 0; i < robot.partCount(); ++i) {
+    for (std::size_t j = i + 1; j < robot.partCount(); ++j) robot.filter().allow(i, j);
+  }
+  EXPECT_FALSE(sweep.selfCollides(qa, qb, 0.0, 0.002)) << "every pair allowed";
+}
+
 TEST(SweptVolumes, DenseSamplingNeverFindsACollisionTheSweepsCalledFree) {
   // Two KR5s facing each other 0.9 m apart; the volumes are compared regardless of timing.
   const RobotModel model = loadUrdf(test::kKr5);

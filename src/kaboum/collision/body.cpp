@@ -24,27 +24,35 @@ CollisionBody::CollisionBody(std::span<const std::vector<Vec3>> convexSets,
     for (const Vec3& v : piece.vertices()) radius = std::max(radius, (v - centre).norm());
   }
   bodyBounds_ = {centre, radius, box};
+  std::vector<Aabb> boxes;
+  for (const PieceBounds& b : bounds_) boxes.push_back(b.box);
+  tree_.build(boxes);
 }
 
 bool bodiesCollide(const CollisionBody& a, const Pose& poseA, const CollisionBody& b,
                    const Pose& poseB, double margin) {
-  const Vec3 centreB = poseB * b.bounds().centre;
-  if (!spheresWithin(poseA * a.bounds().centre, a.bounds().radius, centreB, b.bounds().radius,
-                     margin)) {
+  // b in a's frame: a's pieces need no transform at all.
+  const Eigen::Matrix3d toA = poseA.linear().transpose();
+  Pose relative = Pose::Identity();
+  relative.linear() = toA * poseB.linear();
+  relative.translation() = toA * (poseB.translation() - poseA.translation());
+  const Vec3 centreB = relative * b.bounds().centre;
+  if (!spheresWithin(a.bounds().centre, a.bounds().radius, centreB, b.bounds().radius, margin)) {
     return false;
   }
-  for (std::size_t i = 0; i < a.pieceCount(); ++i) {
-    const PieceBounds& boundsA = a.pieceBounds(i);
-    const Vec3 centreA = poseA * boundsA.centre;
-    if (!spheresWithin(centreA, boundsA.radius, centreB, b.bounds().radius, margin)) continue;
-    const TransformedSupport pieceA(a.piece(i), poseA);
-    for (std::size_t j = 0; j < b.pieceCount(); ++j) {
-      const PieceBounds& boundsB = b.pieceBounds(j);
-      if (spheresWithin(centreA, boundsA.radius, poseB * boundsB.centre, boundsB.radius, margin) &&
-          intersects(pieceA, TransformedSupport(b.piece(j), poseB), margin)) {
-        return true;
-      }
-    }
+  const Aabb boxA = a.bounds().box.inflated(margin);
+  for (std::size_t j = 0; j < b.pieceCount(); ++j) {
+    const PieceBounds& boundsB = b.pieceBounds(j);
+    const Aabb boxB = transformedAabb(boundsB.box, relative).inflated(margin);
+    if (!boxA.overlaps(boxB)) continue;
+    const Vec3 centreJ = relative * boundsB.centre;
+    const TransformedSupport pieceB(b.piece(j), relative);
+    const bool complete = a.pieceTree().forEachOverlapping(boxB, [&](std::uint32_t i) {
+      const PieceBounds& boundsA = a.pieceBounds(i);
+      return !(spheresWithin(boundsA.centre, boundsA.radius, centreJ, boundsB.radius, margin) &&
+               intersects(a.piece(i), pieceB, margin));
+    });
+    if (!complete) return true;
   }
   return false;
 }

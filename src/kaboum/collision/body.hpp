@@ -35,19 +35,23 @@ class CollisionBody {
   [[nodiscard]] const PieceBounds& bounds() const { return bodyBounds_; }
   // Largest distance of a vertex from the body frame origin (r in the sweep steps, Eq. 4.19).
   [[nodiscard]] double reach() const { return reach_; }
+  // Bounding-volume tree over the pieces' local boxes (ids are piece indices).
+  [[nodiscard]] const AabbTree& pieceTree() const { return tree_; }
 
  private:
   std::vector<ConvexPolytope> pieces_;
   std::vector<PieceBounds> bounds_;
   PieceBounds bodyBounds_;
   double reach_ = 0;
+  AabbTree tree_;
 };
 
 using BodyPtr = std::shared_ptr<const CollisionBody>;
 
 // True when some pieces of `a` and `b` (posed by `poseA`, `poseB`) are within `margin` of each
 // other (single-sided: never false at distance <= margin; may be true slightly above, within the
-// narrow phase's tolerance). Spheres cull piece pairs before GJK; allocates nothing.
+// narrow phase's tolerance). Runs in a's frame: each piece of b, boxed there, queries a's piece
+// tree, and spheres cull the remaining pairs before GJK. Allocates nothing.
 bool bodiesCollide(const CollisionBody& a, const Pose& poseA, const CollisionBody& b,
                    const Pose& poseB, double margin);
 

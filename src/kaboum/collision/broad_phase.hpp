@@ -29,13 +29,16 @@ struct Aabb {
 // Box of a local box [lo, hi] after the rigid transform `pose` (tight for the rotated box).
 Aabb transformedAabb(const Aabb& local, const Eigen::Isometry3d& pose);
 
-// Static binary tree over boxes, rebuilt top-down (median split on the longest axis of the
-// centres) whenever the boxes change; for the few hundred boxes of a scene a rebuild costs
-// microseconds and keeps the tree tight. Queries are const and allocate nothing.
+// Binary tree over boxes, built top-down (median split on the longest axis of the centres).
+// When boxes move, refit() updates the node boxes in place without allocating (the topology is
+// kept, so it loosens as boxes drift far; build() again to retighten). Queries are const and
+// allocate nothing.
 class AabbTree {
  public:
   // Rebuilds over `boxes`; the id of a box is its index. Reuses the tree's storage.
   void build(std::span<const Aabb> boxes);
+  // New boxes for the same ids as the last build() (boxes.size() must match); allocates nothing.
+  void refit(std::span<const Aabb> boxes);
   [[nodiscard]] bool empty() const { return nodes_.empty(); }
 
   // Calls visit(id) for every box overlapping `query` until visit returns false; returns false

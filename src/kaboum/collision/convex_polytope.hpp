@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "kaboum/collision/gjk.hpp"
 #include "kaboum/collision/support_mapping.hpp"
 #include "kaboum/geometry/convex_hull.hpp"
 
@@ -153,6 +154,9 @@ class TransformedSupport {
 
   TransformedSupport(const ConvexPolytope& polytope, const Eigen::Isometry3d& pose)
       : polytope_(&polytope), rotation_(pose.linear()), translation_(pose.translation()) {}
+  TransformedSupport(const ConvexPolytope& polytope, const Eigen::Matrix3d& rotation,
+                     const Vec3& translation)
+      : polytope_(&polytope), rotation_(rotation), translation_(translation) {}
 
   [[nodiscard]] Vec3 support(const Vec3& direction, Hint& hint) const {
     // Written out: Eigen's expression templates are not always inlined at -O2 on this hot path.
@@ -180,5 +184,50 @@ class TransformedSupport {
 
 static_assert(SupportMapping<ConvexPolytope>);
 static_assert(SupportMapping<TransformedSupport>);
+
+// GJK between two placed polytopes runs in a's local frame: b is placed by the relative pose
+// a⁻¹ b, so a's support is a plain scan and only b's direction and point are transformed. These
+// overloads are chosen over the generic templates of gjk.hpp; a cache used with them keeps its
+// direction in a's frame (use one cache with one overload family per pair).
+namespace detail {
+
+inline TransformedSupport inFrameOf(const TransformedSupport& a, const TransformedSupport& b) {
+  const Eigen::Matrix3d toA = a.rotation().transpose();
+  return {b.polytope(), toA * b.rotation(), toA * (b.translation() - a.translation())};
+}
+
+using PlacedPairCache = GjkCache<TransformedSupport, TransformedSupport>;
+using LocalPairCache = GjkCache<ConvexPolytope, TransformedSupport>;
+
+inline LocalPairCache localCache(const PlacedPairCache* cache) {
+  if (cache == nullptr) return {};
+  return {cache->direction, cache->hintA, cache->hintB};
+}
+
+inline void storeCache(const LocalPairCache& local, PlacedPairCache* cache) {
+  if (cache != nullptr) *cache = {local.direction, local.hintA, local.hintB};
+}
+
+}  // namespace detail
+
+inline bool intersects(const TransformedSupport& a, const TransformedSupport& b,
+                       double margin = 0.0, detail::PlacedPairCache* cache = nullptr,
+                       const GjkTolerance& tolerance = {}) {
+  detail::LocalPairCache local = detail::localCache(cache);
+  const bool hit = intersects(a.polytope(), detail::inFrameOf(a, b), margin, &local, tolerance);
+  detail::storeCache(local, cache);
+  return hit;
+}
+
+inline DistanceResult distance(const TransformedSupport& a, const TransformedSupport& b,
+                               detail::PlacedPairCache* cache = nullptr,
+                               const GjkTolerance& tolerance = {}) {
+  detail::LocalPairCache local = detail::localCache(cache);
+  DistanceResult result = distance(a.polytope(), detail::inFrameOf(a, b), &local, tolerance);
+  detail::storeCache(local, cache);
+  result.pointA = a.rotation() * result.pointA + a.translation();
+  result.pointB = a.rotation() * result.pointB + a.translation();
+  return result;
+}
 
 }  // namespace kaboum::collision

@@ -5,14 +5,21 @@
 namespace kaboum::collision {
 
 std::size_t CollisionScene::add(BodyPtr body, const Pose& pose, std::string name) {
-  objects_.push_back({std::move(body), pose, std::move(name), true});
+  objects_.push_back({std::move(body), pose, std::move(name), true, 0});
   rebuild();
   return objects_.size() - 1;
 }
 
 void CollisionScene::setPose(std::size_t object, const Pose& pose) {
-  objects_.at(object).pose = pose;
-  rebuild();
+  Object& moved = objects_.at(object);
+  moved.pose = pose;
+  if (!moved.active) return;
+  for (std::size_t slot = moved.firstSlot; slot < moved.firstSlot + moved.body->pieceCount();
+       ++slot) {
+    slots_[slot].centre = pose * moved.body->pieceBounds(slots_[slot].piece).centre;
+    slotBoxes_[slot] = worldBox(moved.body->piece(slots_[slot].piece), pose);
+  }
+  tree_.refit(slotBoxes_);
 }
 
 void CollisionScene::setActive(std::size_t object, bool active) {
@@ -20,22 +27,27 @@ void CollisionScene::setActive(std::size_t object, bool active) {
   rebuild();
 }
 
+// Exact world box of the posed vertices: tighter than a rotated local box.
+Aabb CollisionScene::worldBox(const ConvexPolytope& piece, const Pose& pose) {
+  const auto& vertices = piece.vertices();
+  Aabb box{pose * vertices[0], pose * vertices[0]};
+  for (const Vec3& v : vertices) {
+    const Vec3 w = pose * v;
+    box = {box.lo.cwiseMin(w), box.hi.cwiseMax(w)};
+  }
+  return box;
+}
+
 void CollisionScene::rebuild() {
   slots_.clear();
   slotBoxes_.clear();
   for (std::size_t o = 0; o < objects_.size(); ++o) {
-    const Object& object = objects_[o];
+    Object& object = objects_[o];
+    object.firstSlot = slots_.size();
     if (!object.active) continue;
     for (std::size_t p = 0; p < object.body->pieceCount(); ++p) {
-      // Exact world box of the posed vertices: tighter than a rotated local box.
-      const auto& vertices = object.body->piece(p).vertices();
-      Aabb box{object.pose * vertices[0], object.pose * vertices[0]};
-      for (const Vec3& v : vertices) {
-        const Vec3 w = object.pose * v;
-        box = {box.lo.cwiseMin(w), box.hi.cwiseMax(w)};
-      }
       slots_.push_back({o, p, object.pose * object.body->pieceBounds(p).centre});
-      slotBoxes_.push_back(box);
+      slotBoxes_.push_back(worldBox(object.body->piece(p), object.pose));
     }
   }
   tree_.build(slotBoxes_);

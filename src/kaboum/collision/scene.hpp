@@ -14,8 +14,9 @@ namespace kaboum::collision {
 class CollisionScene {
  public:
   // Adds `body` at `pose` and returns its object id (ids count up from 0 and stay valid). The
-  // broad phase is rebuilt on every change, so queries stay const and allocation-free.
+  // broad phase is rebuilt, so queries stay const and allocation-free.
   std::size_t add(BodyPtr body, const Pose& pose, std::string name = {});
+  // Moves an object; the broad phase is refitted in place (no allocation, no rebuild).
   void setPose(std::size_t object, const Pose& pose);
   // An inactive object takes part in no query (e.g. while it is held by a robot).
   void setActive(std::size_t object, bool active);
@@ -68,6 +69,7 @@ class CollisionScene {
     Pose pose;
     std::string name;
     bool active = true;
+    std::size_t firstSlot = 0;  // its pieces' slots follow this one when active
   };
   struct Slot {  // one piece of one active object in the broad phase
     std::size_t object = 0;
@@ -75,6 +77,7 @@ class CollisionScene {
     Vec3 centre{0, 0, 0};  // world centre of the piece's bounding sphere
   };
   void rebuild();
+  static Aabb worldBox(const ConvexPolytope& piece, const Pose& pose);
   static constexpr std::size_t kMaxCandidates = 64;  // broad-phase hits buffered per body query
 
   std::vector<Object> objects_;

@@ -1,5 +1,6 @@
 #include "kaboum/collision/swept.hpp"
 
+#include <algorithm>
 #include <bit>
 
 namespace kaboum::collision {
@@ -7,8 +8,8 @@ namespace kaboum::collision {
 RobotSweep::RobotSweep(const RobotCollisionModel& robot)
     : robot_(robot), chains_(linkSweepChains(robot.model())) {}
 
-std::span<const RobotSweep::Piece> RobotSweep::sweep(std::span<const double> qa,
-                                                     std::span<const double> qb, double epsilon) {
+std::size_t RobotSweep::sample(std::span<const double> qa, std::span<const double> qb,
+                               double epsilon) {
   const RobotModel& model = robot_.model();
   const std::size_t links = model.links().size();
   subdivisions_.assign(robot_.partCount(), 0);
@@ -30,6 +31,28 @@ std::span<const RobotSweep::Piece> RobotSweep::sweep(std::span<const double> qa,
     for (std::size_t v = 0; v < q_.size(); ++v) q_[v] = qa[v] + t * (qb[v] - qa[v]);
     model.linkPoses(q_, std::span<Pose>(poses_.data() + s * links, links));
   }
+  return finest;
+}
+
+void RobotSweep::sweptPieces(std::size_t part, std::span<const Pose> start,
+                             std::span<const Pose> end, std::vector<Piece>& out) const {
+  const CollisionBody& body = *robot_.part(part).body;
+  const Pose from = robot_.partPose(part, start), to = robot_.partPose(part, end);
+  out.clear();
+  for (std::size_t p = 0; p < body.pieceCount(); ++p) {
+    const PieceBounds& bounds = body.pieceBounds(p);
+    const Vec3 centreStart = from * bounds.centre, centreEnd = to * bounds.centre;
+    out.push_back(
+        {SweptPiece(TransformedSupport(body.piece(p), from), TransformedSupport(body.piece(p), to)),
+         transformedAabb(bounds.box, from).merged(transformedAabb(bounds.box, to)),
+         0.5 * (centreStart + centreEnd), bounds.radius + 0.5 * (centreEnd - centreStart).norm(),
+         part});
+  }
+}
+
+std::span<const RobotSweep::Piece> RobotSweep::sweep(std::span<const double> qa,
+                                                     std::span<const double> qb, double epsilon) {
+  const std::size_t finest = sample(qa, qb, epsilon);
   pieces_.clear();
   for (std::size_t i = 0; i < robot_.partCount(); ++i) {
     const auto& part = robot_.part(i);
@@ -37,18 +60,8 @@ std::span<const RobotSweep::Piece> RobotSweep::sweep(std::span<const double> qa,
     const std::size_t n = static_cast<std::size_t>(subdivisions_[i]);
     const std::size_t stride = finest / n;
     for (std::size_t k = 0; k < n; ++k) {
-      const Pose start = robot_.partPose(i, samplePoses(k * stride));
-      const Pose end = robot_.partPose(i, samplePoses((k + 1) * stride));
-      for (std::size_t p = 0; p < part.body->pieceCount(); ++p) {
-        const PieceBounds& bounds = part.body->pieceBounds(p);
-        const Vec3 centreStart = start * bounds.centre, centreEnd = end * bounds.centre;
-        pieces_.push_back(
-            {SweptPiece(TransformedSupport(part.body->piece(p), start),
-                        TransformedSupport(part.body->piece(p), end)),
-             transformedAabb(bounds.box, start).merged(transformedAabb(bounds.box, end)),
-             0.5 * (centreStart + centreEnd),
-             bounds.radius + 0.5 * (centreEnd - centreStart).norm(), i});
-      }
+      sweptPieces(i, samplePoses(k * stride), samplePoses((k + 1) * stride), piecesI_);
+      pieces_.insert(pieces_.end(), piecesI_.begin(), piecesI_.end());
     }
   }
   return pieces_;
@@ -65,6 +78,62 @@ std::optional<std::size_t> RobotSweep::firstSceneCollision(std::span<const doubl
     }
   }
   return std::nullopt;
+}
+
+bool RobotSweep::partsMeetDuring(std::size_t i, std::size_t j, std::span<const double> qa,
+                                 std::span<const double> qb, const Interval& interval, int depth,
+                                 double reach) {
+  sweptPieces(i, interval.start, interval.end, piecesI_);
+  sweptPieces(j, interval.start, interval.end, piecesJ_);
+  bool meet = false;
+  for (const Piece& pi : piecesI_) {
+    const Aabb box = pi.box.inflated(reach);
+    for (const Piece& pj : piecesJ_) {
+      if (box.overlaps(pj.box) &&
+          spheresWithin(pi.centre, pi.radius, pj.centre, pj.radius, reach) &&
+          intersects(pi.shape, pj.shape, reach)) {
+        meet = true;
+        break;
+      }
+    }
+    if (meet) break;
+  }
+  if (!meet) return false;
+  if (depth == kSelfRefinements) return true;
+  // Halving a sub-step keeps its chord error within ε (the bound of Eq. 4.19 only shrinks).
+  const std::size_t links = robot_.model().links().size();
+  const std::span<Pose> middle(midPoses_.data() + static_cast<std::size_t>(depth) * links, links);
+  const double tm = 0.5 * (interval.t0 + interval.t1);
+  for (std::size_t v = 0; v < q_.size(); ++v) q_[v] = qa[v] + tm * (qb[v] - qa[v]);
+  robot_.model().linkPoses(q_, middle);
+  return partsMeetDuring(i, j, qa, qb, {interval.t0, tm, interval.start, middle}, depth + 1,
+                         reach) ||
+         partsMeetDuring(i, j, qa, qb, {tm, interval.t1, middle, interval.end}, depth + 1, reach);
+}
+
+bool RobotSweep::selfCollides(std::span<const double> qa, std::span<const double> qb, double margin,
+                              double epsilon) {
+  const std::size_t finest = sample(qa, qb, epsilon);
+  midPoses_.resize(static_cast<std::size_t>(kSelfRefinements) * robot_.model().links().size());
+  const double reach = margin + 2 * epsilon;
+  const CollisionFilter& filter = robot_.filter();
+  for (std::size_t i = 0; i < robot_.partCount(); ++i) {
+    if (!robot_.part(i).active) continue;
+    for (std::size_t j = i + 1; j < robot_.partCount(); ++j) {
+      if (!robot_.part(j).active || filter.allowed(i, j)) continue;
+      const auto steps = static_cast<std::size_t>(std::max(subdivisions_[i], subdivisions_[j]));
+      const std::size_t stride = finest / steps;
+      for (std::size_t k = 0; k < steps; ++k) {
+        const Interval interval{static_cast<double>(k * stride) / static_cast<double>(finest),
+                                static_cast<double>((k + 1) * stride) / static_cast<double>(finest),
+                                samplePoses(k * stride), samplePoses((k + 1) * stride)};
+        if (partsMeetDuring(i, j, qa, qb, interval, 0, reach)) {
+          return true;
+        }
+      }
+    }
+  }
+  return false;
 }
 
 bool sweptVolumesCollide(RobotSweep& a, std::span<const double> qa0, std::span<const double> qa1,

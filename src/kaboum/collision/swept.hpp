@@ -64,6 +64,18 @@ class RobotSweep {
                                                  const CollisionScene& scene, double margin,
                                                  double epsilon);
 
+  // Swept self-collision (§4.5, Eq. 4.19–4.22 applied to pairs of the robot's own parts, with its
+  // collision filter): whether two active parts the robot's filter does not exempt come within
+  // `margin` of each other at the same instant of qa -> qb. Each pair is compared sub-step by
+  // sub-step over the finer of its two subdivisions, with both parts swept over the same time
+  // interval and queried at margin + 2ε; an interval whose swept pieces meet is bisected (fresh
+  // forward kinematics at its middle, still within ε) up to kSelfRefinements times, since two
+  // parts may sweep through the same place at different times of one sub-step. Never misses a
+  // self-collision anywhere along the motion; allocates nothing once the buffers have grown.
+  bool selfCollides(std::span<const double> qa, std::span<const double> qb, double margin,
+                    double epsilon);
+  static constexpr int kSelfRefinements = 6;
+
   [[nodiscard]] const RobotCollisionModel& robot() const { return robot_; }
   // Number of forward-kinematics samples the last sweep used (n_max + 1).
   [[nodiscard]] std::size_t sampleCount() const { return samples_; }
@@ -73,11 +85,27 @@ class RobotSweep {
     const std::size_t links = robot_.model().links().size();
     return {poses_.data() + sample * links, links};
   }
+  // Subdivisions per part and forward kinematics at the finest one's samples; returns the finest.
+  std::size_t sample(std::span<const double> qa, std::span<const double> qb, double epsilon);
+  struct Interval {  // [t0, t1] of the motion qa -> qb, with the link poses at both ends
+    double t0, t1;
+    std::span<const Pose> start, end;
+  };
+  // Whether parts i and j, both swept over `interval` of qa -> qb, come within `reach`, refining
+  // by bisection from `depth` on.
+  bool partsMeetDuring(std::size_t i, std::size_t j, std::span<const double> qa,
+                       std::span<const double> qb, const Interval& interval, int depth,
+                       double reach);
+  // The swept pieces of part `part` between two link-pose sets, into `out` (resized).
+  void sweptPieces(std::size_t part, std::span<const Pose> start, std::span<const Pose> end,
+                   std::vector<Piece>& out) const;
 
   const RobotCollisionModel& robot_;
   std::vector<LinkSweepChain> chains_;
   std::vector<int> subdivisions_;  // per part
   std::vector<Pose> poses_;        // samples x links
+  std::vector<Pose> midPoses_;     // kSelfRefinements x links: bisection samples, one per depth
+  std::vector<Piece> piecesI_, piecesJ_;  // scratch: one part's pieces over one sub-step
   std::vector<double> q_;
   std::vector<Piece> pieces_;
   std::size_t samples_ = 0;
