@@ -294,28 +294,25 @@ bool trianglesIntersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Ve
 
 bool trianglesMeetBesideSharedVertex(const Vec3& s, const Vec3& p1, const Vec3& q1, const Vec3& p2,
                                      const Vec3& q2) {
-  // Fast certificate, the usual case between neighbours of a mesh: the far edge of each triangle
-  // lies clearly (beyond 1e-6 of the longest edge L) on one side of the other's plane. For
-  // triangles with |normal| >= 1e-4 L^2 that height exceeds the contact tolerance (1e-12 L) and the
-  // exactness band of the determinants below (1e-12 * bound / |normal|, bound <= 14 L^3, so at
-  // most 1.4e-7 L) by far, so both segment tests would find the same signs and return false.
-  const double longestSquared =
-      std::max(longestEdgeSquared(s, p1, q1), longestEdgeSquared(s, p2, q2));
-  const double margin = 1e-6 * std::sqrt(longestSquared);
-  const auto clearlyOneSide = [&](const Vec3& normal, const Vec3& p, const Vec3& q) {
-    const double length = normal.norm();
-    if (length < 1e-4 * longestSquared) return false;
-    const double hp = normal.dot(p - s), hq = normal.dot(q - s), band = margin * length;
-    return (hp > band && hq > band) || (hp < -band && hq < -band);
-  };
-  if (clearlyOneSide((p2 - s).cross(q2 - s), p1, q1) &&
-      clearlyOneSide((p1 - s).cross(q1 - s), p2, q2)) {
-    return false;
-  }
   const ContactTriangle first(s, p1, q1), second(s, p2, q2);
   if (first.degenerate() || second.degenerate()) return false;
-  const double tolerance = contactTolerance(std::max(first.longestSquared, second.longestSquared));
-  return segmentTouches(p1, q1, second, tolerance) || segmentTouches(p2, q2, first, tolerance);
+  const double longestSquared = std::max(first.longestSquared, second.longestSquared);
+  const double tolerance = contactTolerance(longestSquared);
+  // Fast certificate, the usual case between neighbours of a mesh: an edge lies clearly (beyond
+  // 1e-6 of the longest edge L) on one side of the other triangle's plane. For a triangle with
+  // |normal| >= 1e-4 L^2 that height exceeds the contact tolerance (1e-12 L) and the exactness
+  // band of sideBeyond's determinant (1e-12 * bound / |normal|, bound <= 14 L^3 since every corner
+  // is within 2 L of x, so at most 1.4e-7 L) by far: segmentTouches would find the same two signs
+  // and return false.
+  const double margin = 1e-6 * std::sqrt(longestSquared);
+  const auto clearlyOneSide = [&](const ContactTriangle& t, const Vec3& p, const Vec3& q) {
+    const double length = std::sqrt(t.normalSquared);
+    if (length < 1e-4 * longestSquared) return false;
+    const double hp = t.normal.dot(p - s), hq = t.normal.dot(q - s), band = margin * length;
+    return (hp > band && hq > band) || (hp < -band && hq < -band);
+  };
+  return (!clearlyOneSide(second, p1, q1) && segmentTouches(p1, q1, second, tolerance)) ||
+         (!clearlyOneSide(first, p2, q2) && segmentTouches(p2, q2, first, tolerance));
 }
 
 bool meshTrianglesIntersect(const std::array<Vec3, 3>& t, const Triangle& tIds,
