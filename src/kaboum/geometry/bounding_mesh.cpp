@@ -365,12 +365,9 @@ BoundingMeshSimplifier::Outcome BoundingMeshSimplifier::contract(const Candidate
   if (newFanCrossesMesh(c)) return Outcome::Crossing;
 
   // Execute: b merges into a at the new position.
-  for (std::uint32_t t : fanA_) grid_->remove(t, boxes_[t]);
-  for (std::uint32_t t : fanB_) {
-    if (!contains(t, a)) grid_->remove(t, boxes_[t]);
-  }
   for (std::uint32_t t : fanA_) {
     if (contains(t, b)) {
+      grid_->remove(t, boxes_[t]);
       triangleAlive_[t] = 0;
       for (std::uint32_t w : triangles_[t]) --triangleCount_[w];
     }
@@ -396,8 +393,9 @@ BoundingMeshSimplifier::Outcome BoundingMeshSimplifier::contract(const Candidate
   fanA_.clear();
   forEachTriangle(a, [&](std::uint32_t t) {
     updatePlane(t);
-    boxes_[t] = boxOf(t);
-    grid_->insert(t, boxes_[t]);
+    const Box3 box = boxOf(t);
+    grid_->move(t, boxes_[t], box);
+    boxes_[t] = box;
     fanA_.push_back(t);
   });
 
