@@ -507,6 +507,38 @@ TEST(TrianglesMeetBesideSharedVertex, NearlyCoplanarAnswersAgreeWithTheDistance)
   EXPECT_GT(tally.nearMisses, 300u);
 }
 
+// General position exercises the fast separation certificate (an edge clearly on one side of the
+// other triangle's plane) as well as clear crossings: every answer must agree with the distance.
+TEST(TrianglesMeetBesideSharedVertex, GeneralPositionAnswersAgreeWithTheDistance) {
+  std::mt19937_64 engine(24);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const auto point = [&](const Vec3& around, double scale) {
+    return Vec3(around + scale * Vec3(unit(engine), unit(engine), unit(engine)));
+  };
+  AgreementTally tally;
+  std::size_t apart = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const Vec3 s = point(Vec3(3.0, -7.0, 11.0), 10.0);
+    const double scale = std::pow(10.0, 2.0 * unit(engine));
+    const Vec3 p1 = point(s, scale), q1 = point(s, scale), p2 = point(s, scale),
+               q2 = point(s, scale);
+    const double size = std::max(longestEdge({s, p1, q1}), longestEdge({s, p2, q2}));
+    if ((p1 - s).cross(q1 - s).norm() < 0.01 * size * size ||
+        (p2 - s).cross(q2 - s).norm() < 0.01 * size * size) {
+      continue;
+    }
+    const double distance = std::min(segmentTriangleDistance(p1, q1, s, p2, q2),
+                                     segmentTriangleDistance(p2, q2, s, p1, q1));
+    const bool meet = trianglesMeetBesideSharedVertex(s, p1, q1, p2, q2);
+    ASSERT_TRUE(
+        tally.record(meet, trianglesMeetBesideSharedVertex(s, q2, p2, q1, p1), distance, size))
+        << describe({s, p1, q1, p2, q2});
+    apart += meet ? 0 : 1;
+  }
+  EXPECT_GT(tally.contacts, 2000u);
+  EXPECT_GT(apart, 2000u);
+}
+
 TEST(TriangleBvh, IntersectsTriangleMatchesBruteForce) {
   const TriangleMesh mesh = makeTorus(1.0, 0.35, 32, 16);
   const TriangleBvh bvh(mesh);

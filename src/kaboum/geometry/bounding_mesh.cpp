@@ -50,8 +50,10 @@ class BoundingMeshSimplifier {
   }
 
   bool evaluate(std::uint32_t a, std::uint32_t b, Candidate& out);
+  bool evaluateGathered(std::uint32_t a, std::uint32_t b, Candidate& out);
   void addHalfSpace(std::uint32_t t, const Vec3& origin);
   void queue(std::uint32_t a, std::uint32_t b);
+  void queueGathered(std::uint32_t a, std::uint32_t b);
   enum class Outcome { Done, Stale, Topology, Geometry, Crossing };
   bool stillAboveFanPlanes(const Candidate& c) const;
   bool newFanCrossesMesh(const Candidate& c);
@@ -256,6 +258,11 @@ void BoundingMeshSimplifier::addHalfSpace(std::uint32_t t, const Vec3& origin) {
 bool BoundingMeshSimplifier::evaluate(std::uint32_t a, std::uint32_t b, Candidate& out) {
   gatherFan(a, fanA_);
   gatherFan(b, fanB_);
+  return evaluateGathered(a, b, out);
+}
+
+// As evaluate, with fanA_ and fanB_ already holding the fans of a and b.
+bool BoundingMeshSimplifier::evaluateGathered(std::uint32_t a, std::uint32_t b, Candidate& out) {
   // Work in coordinates centred on the edge so large absolute coordinates lose no precision.
   const Vec3 origin = 0.5 * (positions_[a] + positions_[b]);
   halfSpaces_.clear();
@@ -282,8 +289,14 @@ bool BoundingMeshSimplifier::evaluate(std::uint32_t a, std::uint32_t b, Candidat
 }
 
 void BoundingMeshSimplifier::queue(std::uint32_t a, std::uint32_t b) {
+  gatherFan(a, fanA_);
+  gatherFan(b, fanB_);
+  queueGathered(a, b);
+}
+
+void BoundingMeshSimplifier::queueGathered(std::uint32_t a, std::uint32_t b) {
   Candidate c;
-  if (evaluate(a, b, c)) {
+  if (evaluateGathered(a, b, c)) {
     heap_.push_back(c);
     std::push_heap(heap_.begin(), heap_.end(), std::greater<>{});
   } else {
@@ -352,12 +365,9 @@ BoundingMeshSimplifier::Outcome BoundingMeshSimplifier::contract(const Candidate
   if (newFanCrossesMesh(c)) return Outcome::Crossing;
 
   // Execute: b merges into a at the new position.
-  for (std::uint32_t t : fanA_) grid_->remove(t, boxes_[t]);
-  for (std::uint32_t t : fanB_) {
-    if (!contains(t, a)) grid_->remove(t, boxes_[t]);
-  }
   for (std::uint32_t t : fanA_) {
     if (contains(t, b)) {
+      grid_->remove(t, boxes_[t]);
       triangleAlive_[t] = 0;
       for (std::uint32_t w : triangles_[t]) --triangleCount_[w];
     }
@@ -380,18 +390,24 @@ BoundingMeshSimplifier::Outcome BoundingMeshSimplifier::contract(const Candidate
   positions_[a] = c.position;
   vertexAlive_[b] = 0;
   --aliveVertices_;
+  fanA_.clear();
   forEachTriangle(a, [&](std::uint32_t t) {
     updatePlane(t);
-    boxes_[t] = boxOf(t);
-    grid_->insert(t, boxes_[t]);
+    const Box3 box = boxOf(t);
+    grid_->move(t, boxes_[t], box);
+    boxes_[t] = box;
+    fanA_.push_back(t);
   });
 
   ++version_[a];
   ++fanVersion_[a];
   gatherNeighbours(a, neighbours_);
   for (std::uint32_t w : neighbours_) ++version_[w];
+  // Re-queue the edges around the new vertex; its fan (in fanA_) is gathered once for all of them.
   for (std::uint32_t w : neighbours_) {
-    if (!vertexLocked_[w]) queue(a, w);
+    if (vertexLocked_[w]) continue;
+    gatherFan(w, fanB_);
+    queueGathered(a, w);
   }
   return Outcome::Done;
 }

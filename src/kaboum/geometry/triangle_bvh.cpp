@@ -296,8 +296,23 @@ bool trianglesMeetBesideSharedVertex(const Vec3& s, const Vec3& p1, const Vec3& 
                                      const Vec3& q2) {
   const ContactTriangle first(s, p1, q1), second(s, p2, q2);
   if (first.degenerate() || second.degenerate()) return false;
-  const double tolerance = contactTolerance(std::max(first.longestSquared, second.longestSquared));
-  return segmentTouches(p1, q1, second, tolerance) || segmentTouches(p2, q2, first, tolerance);
+  const double longestSquared = std::max(first.longestSquared, second.longestSquared);
+  const double tolerance = contactTolerance(longestSquared);
+  // Fast certificate, the usual case between neighbours of a mesh: an edge lies clearly (beyond
+  // 1e-6 of the longest edge L) on one side of the other triangle's plane. For a triangle with
+  // |normal| >= 1e-4 L^2 that height exceeds the contact tolerance (1e-12 L) and the exactness
+  // band of sideBeyond's determinant (1e-12 * bound / |normal|, bound <= 14 L^3 since every corner
+  // is within 2 L of x, so at most 1.4e-7 L) by far: segmentTouches would find the same two signs
+  // and return false.
+  const double margin = 1e-6 * std::sqrt(longestSquared);
+  const auto clearlyOneSide = [&](const ContactTriangle& t, const Vec3& p, const Vec3& q) {
+    const double length = std::sqrt(t.normalSquared);
+    if (length < 1e-4 * longestSquared) return false;
+    const double hp = t.normal.dot(p - s), hq = t.normal.dot(q - s), band = margin * length;
+    return (hp > band && hq > band) || (hp < -band && hq < -band);
+  };
+  return (!clearlyOneSide(second, p1, q1) && segmentTouches(p1, q1, second, tolerance)) ||
+         (!clearlyOneSide(first, p2, q2) && segmentTouches(p2, q2, first, tolerance));
 }
 
 bool meshTrianglesIntersect(const std::array<Vec3, 3>& t, const Triangle& tIds,

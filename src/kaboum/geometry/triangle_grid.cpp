@@ -44,4 +44,10 @@ void TriangleGrid::remove(std::uint32_t triangle, const Box3& box) {
   });
 }
 
+void TriangleGrid::move(std::uint32_t triangle, const Box3& from, const Box3& to) {
+  if ((cellOf(from.lo) == cellOf(to.lo)).all() && (cellOf(from.hi) == cellOf(to.hi)).all()) return;
+  remove(triangle, from);
+  insert(triangle, to);
+}
+
 }  // namespace kaboum

@@ -26,6 +26,9 @@ class TriangleGrid {
   void insert(std::uint32_t triangle, const Box3& box);
   // `box` must be the box the triangle was inserted with.
   void remove(std::uint32_t triangle, const Box3& box);
+  // Re-registers a triangle inserted with `from` under `to`; nothing to do when both boxes touch
+  // the same cells.
+  void move(std::uint32_t triangle, const Box3& from, const Box3& to);
   // Calls f(triangle) for every inserted triangle registered in a cell `box` touches (a triangle
   // may be reported more than once; callers deduplicate).
   template <class F>
@@ -42,10 +45,12 @@ class TriangleGrid {
   struct Entry {
     std::uint32_t triangle, next;
   };
+  [[nodiscard]] Eigen::Array3i cellOf(const Vec3& p) const {
+    return (p.array() / cellSize_).floor().cast<int>();
+  }
   template <class F>
   void forEachCell(const Box3& box, F&& f) const {
-    const Eigen::Array3i lo = (box.lo.array() / cellSize_).floor().cast<int>();
-    const Eigen::Array3i hi = (box.hi.array() / cellSize_).floor().cast<int>();
+    const Eigen::Array3i lo = cellOf(box.lo), hi = cellOf(box.hi);
     for (int x = lo.x(); x <= hi.x(); ++x) {
       for (int y = lo.y(); y <= hi.y(); ++y) {
         for (int z = lo.z(); z <= hi.z(); ++z) f(bucketOf(x, y, z));
