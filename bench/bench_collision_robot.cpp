@@ -28,12 +28,7 @@ struct Kr5World {
   Kr5World() {
     std::mt19937_64 rng(1);
     for (int i = 0; i < 1024; ++i) {
-      std::vector<double> q(6);
-      for (int v = 0; v < 6; ++v) {
-        const Joint& joint = robot.model().variableJoint(v);
-        q[static_cast<std::size_t>(v)] =
-            joint.lower + uniformUnit(rng) * (joint.upper - joint.lower);
-      }
+      const std::vector<double> q = randomConfiguration(robot.model(), rng);
       std::vector<Pose> p(robot.model().links().size());
       robot.model().linkPoses(q, p);
       configurations.push_back(q);

@@ -47,7 +47,7 @@ const std::vector<Link>& links() {
 // One link: time per decomposition; counters give the result's Table 4.3 columns (distances in %
 // of the diagonal, measured once outside the timed loop).
 void BM_DecomposeLink(benchmark::State& state, const Link* link) {
-  const kaboum::DecompositionOptions options;  // 3% of the diagonal, at most 12 pieces
+  const kaboum::DecompositionOptions options;  // 3% of the diagonal, at most 11 pieces
   kaboum::Decomposition result;
   for (auto _ : state) {
     result = kaboum::decomposeBounding(link->mesh, options);

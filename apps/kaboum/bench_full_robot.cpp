@@ -128,15 +128,6 @@ struct FclRobot {
   }
 };
 
-std::vector<double> randomQ(const RobotModel& model, std::mt19937_64& rng) {
-  std::vector<double> q(static_cast<std::size_t>(model.dof()));
-  for (int v = 0; v < model.dof(); ++v) {
-    const Joint& joint = model.variableJoint(v);
-    q[static_cast<std::size_t>(v)] = joint.lower + uniformUnit(rng) * (joint.upper - joint.lower);
-  }
-  return q;
-}
-
 // Per-query medians over `runs` passes of check(i) for every query i, in ns; `answers` gets
 // check's results from the first pass.
 template <class Check>
@@ -262,7 +253,7 @@ nlohmann::json runFullRobotBench(const FullRobotBenchOptions& options) {
   std::vector<Pose> poses(model.links().size());
   collision::Aabb region{Vec3::Constant(1e300), Vec3::Constant(-1e300)};
   for (int i = 0; i < 200; ++i) {
-    model.linkPoses(randomQ(model, rng), poses);
+    model.linkPoses(randomConfiguration(model, rng), poses);
     for (const Pose& pose : poses) {
       region = region.merged({pose.translation(), pose.translation()});
     }
@@ -270,7 +261,7 @@ nlohmann::json runFullRobotBench(const FullRobotBenchOptions& options) {
   const CollisionScene scene = obstaclesAwayFromTheBase(hulls, region, options);
 
   std::vector<std::vector<Pose>> queries(static_cast<std::size_t>(options.queries), poses);
-  for (auto& query : queries) model.linkPoses(randomQ(model, rng), query);
+  for (auto& query : queries) model.linkPoses(randomConfiguration(model, rng), query);
   progress("side by side on " + std::to_string(options.queries) + " random configurations...");
   nlohmann::json figures = {{"robot", model.name()},
                             {"obstacles", options.obstacles},
@@ -286,7 +277,7 @@ nlohmann::json runFullRobotBench(const FullRobotBenchOptions& options) {
   std::vector<std::vector<Pose>> along;
   std::vector<double> q(static_cast<std::size_t>(model.dof()));
   for (int m = 0; m < options.motions; ++m) {
-    const auto qa = randomQ(model, rng), qb = randomQ(model, rng);
+    const auto qa = randomConfiguration(model, rng), qb = randomConfiguration(model, rng);
     for (int s = 0; s <= options.motionSteps; ++s) {
       for (std::size_t v = 0; v < q.size(); ++v) {
         q[v] = qa[v] + s * (qb[v] - qa[v]) / options.motionSteps;

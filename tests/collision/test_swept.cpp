@@ -38,15 +38,6 @@ CollisionScene scatteredBoxes(std::mt19937_64& rng, int count) {
   return scene;
 }
 
-std::vector<double> randomQ(const RobotModel& model, std::mt19937_64& rng) {
-  std::vector<double> q(static_cast<std::size_t>(model.dof()));
-  for (int v = 0; v < model.dof(); ++v) {
-    const Joint& joint = model.variableJoint(v);
-    q[static_cast<std::size_t>(v)] = joint.lower + uniformUnit(rng) * (joint.upper - joint.lower);
-  }
-  return q;
-}
-
 // Exact checks (margin 0) at `samples` + 1 evenly spaced configurations of qa -> qb.
 bool denseSamplingCollides(const RobotCollisionModel& robot, std::span<const double> qa,
                            std::span<const double> qb, const CollisionScene& scene, int samples) {
@@ -76,8 +67,8 @@ TEST(RobotSweep, DenseSamplingNeverFindsACollisionTheSweepCalledFree) {
   const double epsilon = 0.005;
   int sweptCollisions = 0, sampledCollisions = 0;
   for (int m = 0; m < motions; ++m) {
-    const auto qa = randomQ(robot.model(), rng);
-    auto qb = randomQ(robot.model(), rng);
+    const auto qa = randomConfiguration(robot.model(), rng);
+    auto qb = randomConfiguration(robot.model(), rng);
     for (std::size_t v = 0; v < qb.size(); ++v) qb[v] = qa[v] + 0.5 * (qb[v] - qa[v]);
     const bool swept = sweep.firstSceneCollision(qa, qb, scene, 0.0, epsilon).has_value();
     const bool sampled = denseSamplingCollides(robot, qa, qb, scene, 400);
@@ -156,7 +147,8 @@ TEST(RobotSweep, DenseSamplingNeverFindsASelfCollisionTheSweepCalledFree) {
   const int samples = 400;
   int swept = 0, sampled = 0, loose = 0;
   for (int m = 0; m < motions; ++m) {
-    const auto qa = randomQ(robot.model(), rng), qb = randomQ(robot.model(), rng);
+    const auto qa = randomConfiguration(robot.model(), rng),
+               qb = randomConfiguration(robot.model(), rng);
     const bool sweptHit = sweep.selfCollides(qa, qb, 0.0, epsilon);
     const int first = firstSelfCollidingSample(robot, qa, qb, samples);
     if (first >= 0) {
@@ -211,8 +203,8 @@ TEST(SweptVolumes, DenseSamplingNeverFindsACollisionTheSweepsCalledFree) {
   int collisions = 0;
   const double epsilon = 0.005;
   for (int m = 0; m < motions; ++m) {
-    const auto qa0 = randomQ(model, rng), qa1 = randomQ(model, rng);
-    const auto qb0 = randomQ(model, rng), qb1 = randomQ(model, rng);
+    const auto qa0 = randomConfiguration(model, rng), qa1 = randomConfiguration(model, rng);
+    const auto qb0 = randomConfiguration(model, rng), qb1 = randomConfiguration(model, rng);
     const bool swept = sweptVolumesCollide(sweepLeft, qa0, qa1, sweepRight, qb0, qb1, 0, epsilon);
     collisions += swept;
     if (swept) continue;

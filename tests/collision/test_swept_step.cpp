@@ -16,15 +16,6 @@ namespace {
 const std::string kKr5 = "/usr/share/doc/dart/data/urdf/KR5/KR5 sixx R650.urdf";
 const std::string kComauLeft = std::string(KABOUM_DATA_DIR) + "/robots/comau-left.urdf";
 
-std::vector<double> randomQ(const RobotModel& model, std::mt19937_64& rng) {
-  std::vector<double> q(static_cast<std::size_t>(model.dof()));
-  for (int v = 0; v < model.dof(); ++v) {
-    const Joint& joint = model.variableJoint(v);
-    q[static_cast<std::size_t>(v)] = joint.lower + uniformUnit(rng) * (joint.upper - joint.lower);
-  }
-  return q;
-}
-
 Vec3 randomDirection(std::mt19937_64& rng) {
   std::normal_distribution<double> normal;
   Vec3 d(normal(rng), normal(rng), normal(rng));
@@ -40,7 +31,7 @@ double worstDeviationRatio(const RobotModel& model, double radius, double epsilo
   std::vector<Pose> a(model.links().size()), b(model.links().size()), mid(model.links().size());
   double worst = 0;
   for (int m = 0; m < motions; ++m) {
-    const auto qa = randomQ(model, rng);
+    const auto qa = randomConfiguration(model, rng);
     auto qb = qa;  // a short random motion, so that n stays small enough to sample densely
     for (auto& value : qb) value += 0.3 * (2 * uniformUnit(rng) - 1);
     std::vector<Vec3> points(8);

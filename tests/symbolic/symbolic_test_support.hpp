@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 #include "kaboum/symbolic/planner.hpp"
 #include "kaboum/symbolic/validator.hpp"
@@ -13,6 +14,24 @@ namespace kaboum::symbolic::testing {
 
 inline std::string pddlPath(const std::string& relative) {
   return std::string(KABOUM_DATA_DIR) + "/pddl/" + relative;
+}
+
+// A domain/problem pair under data/pddl.
+struct IpcInstance {
+  std::string domain;
+  std::string problem;
+};
+
+// One small instance of every copied IPC domain (and the ADL feature test), for search tests.
+inline const std::vector<IpcInstance>& smallIpcInstances() {
+  static const std::vector<IpcInstance> instances = {
+      {"blocks/domain.pddl", "blocks/probBLOCKS-4-0.pddl"},
+      {"gripper/domain.pddl", "gripper/prob01.pddl"},
+      {"logistics00/domain.pddl", "logistics00/probLOGISTICS-4-0.pddl"},
+      {"depot/domain.pddl", "depot/p01.pddl"},
+      {"miconic/domain.pddl", "miconic/s3-0.pddl"},
+      {"adl/domain.pddl", "adl/problem.pddl"}};
+  return instances;
 }
 
 // Plans and checks the plan with validatePlan; returns the report.

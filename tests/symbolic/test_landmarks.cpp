@@ -123,20 +123,8 @@ TEST(Landmarks, CountIsZeroExactlyWhenTheGoalLandmarksHold) {
   EXPECT_EQ(previous, 0);
 }
 
-struct Instance {
-  std::string domain;
-  std::string problem;
-};
-
 TEST(Landmarks, LamaStyleSearchSolvesIpcInstancesWithValidPlans) {
-  const std::vector<Instance> instances = {
-      {"blocks/domain.pddl", "blocks/probBLOCKS-4-0.pddl"},
-      {"gripper/domain.pddl", "gripper/prob01.pddl"},
-      {"logistics00/domain.pddl", "logistics00/probLOGISTICS-4-0.pddl"},
-      {"depot/domain.pddl", "depot/p01.pddl"},
-      {"miconic/domain.pddl", "miconic/s3-0.pddl"},
-      {"adl/domain.pddl", "adl/problem.pddl"}};
-  for (const Instance& instance : instances) {
+  for (const testing::IpcInstance& instance : testing::smallIpcInstances()) {
     const Domain domain = loadDomain(pddlPath(instance.domain));
     const Problem problem = loadProblem(pddlPath(instance.problem), domain);
     for (const bool lazy : {false, true}) {

@@ -15,19 +15,6 @@ namespace {
 using testing::pddlPath;
 using testing::planAndValidate;
 
-struct Instance {
-  std::string domain;
-  std::string problem;
-};
-
-const std::vector<Instance> kInstances = {
-    {"blocks/domain.pddl", "blocks/probBLOCKS-4-0.pddl"},
-    {"gripper/domain.pddl", "gripper/prob01.pddl"},
-    {"logistics00/domain.pddl", "logistics00/probLOGISTICS-4-0.pddl"},
-    {"depot/domain.pddl", "depot/p01.pddl"},
-    {"miconic/domain.pddl", "miconic/s3-0.pddl"},
-    {"adl/domain.pddl", "adl/problem.pddl"}};
-
 SearchOptions options(const std::string& mode, const std::string& heuristic) {
   SearchOptions out;
   out.mode = mode;
@@ -39,7 +26,7 @@ SearchOptions options(const std::string& mode, const std::string& heuristic) {
 }
 
 TEST(Search, HeuristicSearchSolvesIpcInstancesWithValidPlans) {
-  for (const Instance& instance : kInstances) {
+  for (const testing::IpcInstance& instance : testing::smallIpcInstances()) {
     const Domain domain = loadDomain(pddlPath(instance.domain));
     const Problem problem = loadProblem(pddlPath(instance.problem), domain);
     for (const std::string heuristic : {"ff", "add"}) {

@@ -5,8 +5,10 @@
 #include <cstdint>
 #include <random>
 #include <span>
+#include <vector>
 
 #include "kaboum/kinematics/kinematic_chain.hpp"
+#include "kaboum/kinematics/robot_model.hpp"
 
 namespace kaboum {
 
@@ -22,6 +24,16 @@ inline void randomConfiguration(const KinematicChain& chain, std::mt19937_64& rn
     q[static_cast<std::size_t>(i)] =
         chain.lower(i) + uniformUnit(rng) * (chain.upper(i) - chain.lower(i));
   }
+}
+
+// A configuration of every variable joint of `model`, uniform within the joint limits.
+inline std::vector<double> randomConfiguration(const RobotModel& model, std::mt19937_64& rng) {
+  std::vector<double> q(static_cast<std::size_t>(model.dof()));
+  for (int v = 0; v < model.dof(); ++v) {
+    const Joint& joint = model.variableJoint(v);
+    q[static_cast<std::size_t>(v)] = joint.lower + uniformUnit(rng) * (joint.upper - joint.lower);
+  }
+  return q;
 }
 
 }  // namespace kaboum
