@@ -80,25 +80,33 @@ std::optional<std::size_t> RobotSweep::firstSceneCollision(std::span<const doubl
   return std::nullopt;
 }
 
+namespace {
+
+// True if some swept piece of `a` comes within `reach` of some swept piece of `b` (box, then
+// bounding spheres, then GJK).
+bool anyPiecesWithin(std::span<const RobotSweep::Piece> a, std::span<const RobotSweep::Piece> b,
+                     double reach) {
+  for (const RobotSweep::Piece& pa : a) {
+    const Aabb box = pa.box.inflated(reach);
+    for (const RobotSweep::Piece& pb : b) {
+      if (box.overlaps(pb.box) &&
+          spheresWithin(pa.centre, pa.radius, pb.centre, pb.radius, reach) &&
+          intersects(pa.shape, pb.shape, reach)) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
 bool RobotSweep::partsMeetDuring(std::size_t i, std::size_t j, std::span<const double> qa,
                                  std::span<const double> qb, const Interval& interval, int depth,
                                  double reach) {
   sweptPieces(i, interval.start, interval.end, piecesI_);
   sweptPieces(j, interval.start, interval.end, piecesJ_);
-  bool meet = false;
-  for (const Piece& pi : piecesI_) {
-    const Aabb box = pi.box.inflated(reach);
-    for (const Piece& pj : piecesJ_) {
-      if (box.overlaps(pj.box) &&
-          spheresWithin(pi.centre, pi.radius, pj.centre, pj.radius, reach) &&
-          intersects(pi.shape, pj.shape, reach)) {
-        meet = true;
-        break;
-      }
-    }
-    if (meet) break;
-  }
-  if (!meet) return false;
+  if (!anyPiecesWithin(piecesI_, piecesJ_, reach)) return false;
   if (depth == kSelfRefinements) return true;
   // Halving a sub-step keeps its chord error within ε (the bound of Eq. 4.19 only shrinks).
   const std::size_t links = robot_.model().links().size();
@@ -141,18 +149,7 @@ bool sweptVolumesCollide(RobotSweep& a, std::span<const double> qa0, std::span<c
                          double margin, double epsilon) {
   const auto piecesA = a.sweep(qa0, qa1, epsilon);
   const auto piecesB = b.sweep(qb0, qb1, epsilon);
-  const double reach = margin + 2 * epsilon;
-  for (const auto& pa : piecesA) {
-    const Aabb box = pa.box.inflated(reach);
-    for (const auto& pb : piecesB) {
-      if (box.overlaps(pb.box) &&
-          spheresWithin(pa.centre, pa.radius, pb.centre, pb.radius, reach) &&
-          intersects(pa.shape, pb.shape, reach)) {
-        return true;
-      }
-    }
-  }
-  return false;
+  return anyPiecesWithin(piecesA, piecesB, margin + 2 * epsilon);
 }
 
 }  // namespace kaboum::collision
