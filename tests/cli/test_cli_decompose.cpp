@@ -13,16 +13,10 @@ namespace kaboum {
 namespace {
 
 using test::CliResult;
+using test::lineCount;
+using test::quotedMesh;
 using test::runCli;
 using test::ScratchDir;
-
-std::string data(const std::string& name) {
-  return "'" + std::string(KABOUM_DATA_DIR) + "/meshes/" + name + "'";
-}
-
-std::size_t lineCount(const std::string& text) {
-  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
-}
 
 // Lines starting with `prefix` in the file.
 std::size_t linesStartingWith(const std::string& text, const std::string& prefix) {
@@ -35,8 +29,8 @@ std::size_t linesStartingWith(const std::string& text, const std::string& prefix
 TEST(DecomposeCli, JsonMatchesTheWrittenPieces) {
   ScratchDir dir;
   const std::string out = dir.file("base.obj");
-  const CliResult r =
-      runCli(dir, "decompose " + data("kr5-base-link.stl") + " -o '" + out + "' --json --quiet");
+  const CliResult r = runCli(
+      dir, "decompose " + quotedMesh("kr5-base-link.stl") + " -o '" + out + "' --json --quiet");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_EQ(r.err, "");  // --quiet
   const nlohmann::json j = nlohmann::json::parse(r.out);
@@ -71,7 +65,7 @@ TEST(DecomposeCli, JsonMatchesTheWrittenPieces) {
 
 TEST(DecomposeCli, TextReportsTable43Columns) {
   ScratchDir dir;
-  const CliResult r = runCli(dir, "decompose " + data("kr5-wrist.stl") + " -o '" +
+  const CliResult r = runCli(dir, "decompose " + quotedMesh("kr5-wrist.stl") + " -o '" +
                                       dir.file("w.obj") + "' --epsilon 4% --max-pieces 5");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   for (const char* text : {"convex pieces", "vertices per convex: min",
@@ -86,7 +80,7 @@ TEST(DecomposeCli, TextReportsTable43Columns) {
 TEST(DecomposeCli, PieceLimitAndAbsoluteEpsilonAreApplied) {
   ScratchDir dir;
   const CliResult r =
-      runCli(dir, "decompose " + data("kr5-wrist.stl") + " -o '" + dir.file("w.obj") +
+      runCli(dir, "decompose " + quotedMesh("kr5-wrist.stl") + " -o '" + dir.file("w.obj") +
                       "' --epsilon 0.004 --max-pieces 2 --json -q");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
@@ -111,12 +105,12 @@ TEST(DecomposeCli, BadInputIsOneLineAndExitCode2) {
       {"decompose '" + empty + "'" + out, "empty.obj"},
       {"decompose '" + nan + "'" + out, "nan.obj"},
       {"decompose '" + flat + "'" + out, "flat.obj"},
-      {"decompose " + data("cube.off") + out + " --epsilon abc", "--epsilon"},
-      {"decompose " + data("cube.off") + out + " --epsilon -1%", "--epsilon"},
-      {"decompose " + data("cube.off") + out + " --max-pieces 0", "--max-pieces"},
-      {"decompose " + data("cube.off") + " -o '" + dir.file("no/such/dir/out.obj") + "'",
+      {"decompose " + quotedMesh("cube.off") + out + " --epsilon abc", "--epsilon"},
+      {"decompose " + quotedMesh("cube.off") + out + " --epsilon -1%", "--epsilon"},
+      {"decompose " + quotedMesh("cube.off") + out + " --max-pieces 0", "--max-pieces"},
+      {"decompose " + quotedMesh("cube.off") + " -o '" + dir.file("no/such/dir/out.obj") + "'",
        "out.obj"},
-      {"decompose " + data("cube.off"), "--output"},
+      {"decompose " + quotedMesh("cube.off"), "--output"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.arguments);

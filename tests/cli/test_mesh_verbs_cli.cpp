@@ -13,22 +13,16 @@ namespace kaboum {
 namespace {
 
 using test::CliResult;
+using test::lineCount;
+using test::quotedMesh;
 using test::runCli;
 using test::ScratchDir;
-
-std::string data(const std::string& name) {
-  return "'" + std::string(KABOUM_DATA_DIR) + "/meshes/" + name + "'";
-}
-
-int lineCount(const std::string& text) {
-  return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
-}
 
 TEST(BoundCli, JsonReportsTheRunAndTheWrittenMeshMatchesIt) {
   ScratchDir dir;
   const std::string out = dir.file("wrist-outer.obj");
   const CliResult r = runCli(
-      dir, "bound " + data("kr5-wrist.stl") + " -o '" + out + "' --ratio 0.3 --json --quiet");
+      dir, "bound " + quotedMesh("kr5-wrist.stl") + " -o '" + out + "' --ratio 0.3 --json --quiet");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_EQ(r.err, "");  // --quiet: no progress
   const nlohmann::json j = nlohmann::json::parse(r.out);
@@ -49,11 +43,11 @@ TEST(BoundCli, OuterAndInnerResultsAreVerifiedByCheck) {
   ScratchDir dir;
   for (const std::string side : {"outer", "inner"}) {
     const std::string out = dir.file("spot-" + side + ".ply");
-    const CliResult bound = runCli(
-        dir, "bound " + data("spot.obj") + " -o '" + out + "' --" + side + " --vertices 400 -q");
+    const CliResult bound = runCli(dir, "bound " + quotedMesh("spot.obj") + " -o '" + out + "' --" +
+                                            side + " --vertices 400 -q");
     ASSERT_EQ(bound.exitCode, 0) << bound.err;
     const CliResult check =
-        runCli(dir, "check " + data("spot.obj") + " '" + out + "' --" + side + " --json");
+        runCli(dir, "check " + quotedMesh("spot.obj") + " '" + out + "' --" + side + " --json");
     ASSERT_EQ(check.exitCode, 0) << check.out << check.err;
     const nlohmann::json j = nlohmann::json::parse(check.out);
     EXPECT_TRUE(j["verified"].get<bool>());
@@ -61,8 +55,8 @@ TEST(BoundCli, OuterAndInnerResultsAreVerifiedByCheck) {
     EXPECT_GT(j["samples_checked"].get<std::size_t>(), 1000u);
   }
   // The outer result is not an inner bound: check must say so with exit code 1.
-  const CliResult wrong =
-      runCli(dir, "check " + data("spot.obj") + " '" + dir.file("spot-outer.ply") + "' --inner");
+  const CliResult wrong = runCli(
+      dir, "check " + quotedMesh("spot.obj") + " '" + dir.file("spot-outer.ply") + "' --inner");
   EXPECT_EQ(wrong.exitCode, 1);
   EXPECT_NE(wrong.out.find("VIOLATED"), std::string::npos) << wrong.out;
 }
@@ -70,13 +64,14 @@ TEST(BoundCli, OuterAndInnerResultsAreVerifiedByCheck) {
 TEST(BoundCli, CheckRejectsAnInsideOutResult) {
   ScratchDir dir;
   const std::string out = dir.file("spot-outer.obj");
-  ASSERT_EQ(runCli(dir, "bound " + data("spot.obj") + " -o '" + out + "' --ratio 0.2 -q").exitCode,
-            0);
+  ASSERT_EQ(
+      runCli(dir, "bound " + quotedMesh("spot.obj") + " -o '" + out + "' --ratio 0.2 -q").exitCode,
+      0);
   TriangleMesh flipped = readMesh(out);
   for (Triangle& t : flipped.triangles) std::swap(t[1], t[2]);
   writeMesh(flipped, dir.file("flipped.obj"));
   const CliResult r =
-      runCli(dir, "check " + data("spot.obj") + " '" + dir.file("flipped.obj") + "' --json");
+      runCli(dir, "check " + quotedMesh("spot.obj") + " '" + dir.file("flipped.obj") + "' --json");
   EXPECT_EQ(r.exitCode, 1) << r.out << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_TRUE(j["inside_out"].get<bool>());
@@ -85,8 +80,8 @@ TEST(BoundCli, CheckRejectsAnInsideOutResult) {
 
 TEST(BoundCli, EpsilonIsADistanceInPercentOfTheDiagonal) {
   ScratchDir dir;
-  const CliResult r = runCli(dir, "bound " + data("fandisk.obj") + " -o '" + dir.file("f.obj") +
-                                      "' --epsilon 1% --json -q");
+  const CliResult r = runCli(dir, "bound " + quotedMesh("fandisk.obj") + " -o '" +
+                                      dir.file("f.obj") + "' --epsilon 1% --json -q");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_LE(j["hausdorff"]["original_to_result"]["max_percent_of_diagonal"].get<double>(), 1.0);
@@ -98,10 +93,11 @@ TEST(BoundCli, OpenInputsAreSimplifiedAndCheckSaysContainmentIsUndefined) {
   ScratchDir dir;
   const std::string out = dir.file("base.obj");
   const CliResult bound =
-      runCli(dir, "bound " + data("kr5-base-link.stl") + " -o '" + out + "' --ratio 0.5 -q");
+      runCli(dir, "bound " + quotedMesh("kr5-base-link.stl") + " -o '" + out + "' --ratio 0.5 -q");
   ASSERT_EQ(bound.exitCode, 0) << bound.err;
   EXPECT_NE(bound.out.find("containment is only defined for closed meshes"), std::string::npos);
-  const CliResult check = runCli(dir, "check " + data("kr5-base-link.stl") + " '" + out + "'");
+  const CliResult check =
+      runCli(dir, "check " + quotedMesh("kr5-base-link.stl") + " '" + out + "'");
   EXPECT_EQ(check.exitCode, 0);
   EXPECT_NE(check.out.find("not defined"), std::string::npos) << check.out;
 }
@@ -137,7 +133,7 @@ std::string writeMoebius(const ScratchDir& dir) {
 TEST(BoundCli, BadInputGivesOneLineAndExitCodeTwo) {
   ScratchDir dir;
   const std::string out = "-o '" + dir.file("out.obj") + "'";
-  const std::string cow = data("cow.obj");
+  const std::string cow = quotedMesh("cow.obj");
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"bound '" + dir.file("missing.obj") + "' " + out + " --ratio 0.5", "missing.obj"},
       {"bound " + cow + " " + out, "give a target"},
@@ -154,7 +150,7 @@ TEST(BoundCli, BadInputGivesOneLineAndExitCodeTwo) {
     const bool isBound = arguments.rfind("bound", 0) == 0;
     const CliResult r = runCli(dir, arguments + (isBound ? " -q" : ""));
     EXPECT_EQ(r.exitCode, 2) << arguments << "\n" << r.err;
-    EXPECT_EQ(lineCount(r.err), 1) << arguments << "\n" << r.err;
+    EXPECT_EQ(lineCount(r.err), 1u) << arguments << "\n" << r.err;
     EXPECT_NE(r.err.find(mention), std::string::npos) << arguments << "\n" << r.err;
   }
 }

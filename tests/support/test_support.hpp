@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -63,6 +64,16 @@ inline CliResult runCli(const ScratchDir& dir, const std::string& arguments) {
   result.out = slurp(dir.file("out.txt"));
   result.err = slurp(dir.file("err.txt"));
   return result;
+}
+
+// Path of a mesh copied into the repo's data/meshes/, single-quoted for a CLI command line.
+inline std::string quotedMesh(const std::string& name) {
+  return "'" + std::string(KABOUM_DATA_DIR) + "/meshes/" + name + "'";
+}
+
+// Number of lines in `text` (newline characters).
+inline std::size_t lineCount(const std::string& text) {
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
 }
 
 }  // namespace kaboum::test

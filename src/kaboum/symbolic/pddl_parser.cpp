@@ -59,6 +59,19 @@ class Parser {
     return expr.text;
   }
 
+  // The single top-level form "(define (KIND NAME) ...)"; returns it after checking its shape.
+  const SExpr& expectDefine(const std::vector<SExpr>& top, const std::string& kind) const {
+    const std::string shape = "expected '(define (" + kind + " NAME) ...)'";
+    if (top.empty()) throw InputError(locate(file_, shape));
+    if (top.size() > 1) fail(top[1], "expected end of file after the " + kind + " definition");
+    const SExpr& define = top[0];
+    if (!define.startsWith("define") || define.items.size() < 2 ||
+        !define.items[1].startsWith(kind) || define.items[1].items.size() != 2) {
+      fail(define, shape);
+    }
+    return define;
+  }
+
   // A typed list "a b - t c": returns (name, type expression) pairs; `variables` demands '?'.
   std::vector<std::pair<const SExpr*, const SExpr*>> typedList(const std::vector<SExpr>& items,
                                                                std::size_t from, bool variables,
@@ -418,13 +431,7 @@ class DomainParser : public Parser {
   Domain parse(const std::vector<SExpr>& top) {
     domain_.file = file_;
     domain_.types.push_back({"object", -1});
-    if (top.empty()) throw InputError(locate(file_, "expected '(define (domain NAME) ...)'"));
-    if (top.size() > 1) fail(top[1], "expected end of file after the domain definition");
-    const SExpr& define = top[0];
-    if (!define.startsWith("define") || define.items.size() < 2 ||
-        !define.items[1].startsWith("domain") || define.items[1].items.size() != 2) {
-      fail(define, "expected '(define (domain NAME) ...)'");
-    }
+    const SExpr& define = expectDefine(top, "domain");
     domain_.name = expectName(define.items[1].items[1], "a domain name");
     // Declarations first, actions last, so actions may use anything declared anywhere.
     std::vector<const SExpr*> actions;
@@ -665,13 +672,7 @@ class ProblemParser : public Parser {
     problem_.file = file_;
     problem_.objectNames = domain_.constantNames;
     problem_.objectTypes = domain_.constantTypes;
-    if (top.empty()) throw InputError(locate(file_, "expected '(define (problem NAME) ...)'"));
-    if (top.size() > 1) fail(top[1], "expected end of file after the problem definition");
-    const SExpr& define = top[0];
-    if (!define.startsWith("define") || define.items.size() < 2 ||
-        !define.items[1].startsWith("problem") || define.items[1].items.size() != 2) {
-      fail(define, "expected '(define (problem NAME) ...)'");
-    }
+    const SExpr& define = expectDefine(top, "problem");
     problem_.name = expectName(define.items[1].items[1], "a problem name");
     const SExpr* init = nullptr;
     const SExpr* goal = nullptr;
