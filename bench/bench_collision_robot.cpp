@@ -1,6 +1,7 @@
 // Full-robot collision checks (issue 3): the KR5's convex pieces against 50 random convex
 // obstacles, self-collision, swept motions, swept self-collision and isInside. The side-by-side
-// comparison with FCL is `kaboum bench collision --robot` (apps/kaboum/bench_full_robot.cpp).
+// comparison with FCL is `kaboum bench collision --section robot`
+// (apps/kaboum/bench_full_robot.cpp).
 #include <benchmark/benchmark.h>
 
 #include <random>
@@ -63,19 +64,28 @@ void BM_Kr5SelfCheck(benchmark::State& state) {
 }
 BENCHMARK(BM_Kr5SelfCheck);
 
-// Straight motions between consecutive random configurations, swept at ε = 1 mm (range(0) µm).
+// Calls check(qa, qb) once per benchmark iteration on the straight motion between consecutive
+// random configurations.
+template <class Check>
+void alongMotions(benchmark::State& state, const Kr5World& w, Check&& check) {
+  const std::size_t count = w.configurations.size();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    check(w.configurations[i % count], w.configurations[(i + 1) % count]);
+    ++i;
+  }
+}
+
+// Swept motions against the scene at ε = range(0) µm.
 void BM_Kr5SweptMotion(benchmark::State& state) {
   const Kr5World& w = world();
   RobotSweep sweep(w.robot);
   const double epsilon = static_cast<double>(state.range(0)) * 1e-6;
-  std::size_t i = 0, samples = 0;
-  for (auto _ : state) {
-    const auto& qa = w.configurations[i % w.configurations.size()];
-    const auto& qb = w.configurations[(i + 1) % w.configurations.size()];
+  std::size_t samples = 0;
+  alongMotions(state, w, [&](const std::vector<double>& qa, const std::vector<double>& qb) {
     benchmark::DoNotOptimize(sweep.firstSceneCollision(qa, qb, w.scene, 0.0, epsilon));
     samples += sweep.sampleCount();
-    ++i;
-  }
+  });
   state.counters["fk_samples"] =
       static_cast<double>(samples) / static_cast<double>(state.iterations());
 }
@@ -86,13 +96,10 @@ void BM_Kr5SweptSelfCollision(benchmark::State& state) {
   const Kr5World& w = world();
   RobotSweep sweep(w.robot);
   const double epsilon = static_cast<double>(state.range(0)) * 1e-6;
-  std::size_t i = 0, hits = 0;
-  for (auto _ : state) {
-    const auto& qa = w.configurations[i % w.configurations.size()];
-    const auto& qb = w.configurations[(i + 1) % w.configurations.size()];
+  std::size_t hits = 0;
+  alongMotions(state, w, [&](const std::vector<double>& qa, const std::vector<double>& qb) {
     hits += sweep.selfCollides(qa, qb, 0.0, epsilon) ? 1 : 0;
-    ++i;
-  }
+  });
   state.counters["colliding"] = static_cast<double>(hits) / static_cast<double>(state.iterations());
 }
 BENCHMARK(BM_Kr5SweptSelfCollision)->Arg(1000)->Arg(4000);

@@ -274,6 +274,31 @@ std::vector<MethodReport> measureAll(const std::vector<PolytopePair>& pairs,
   return reports;
 }
 
+// How kaboum's cold boolean query decides the pairs (in this order): bounding spheres apart,
+// inner balls overlapping (sphereVerdict), the portal test (portalIntersects), else GJK.
+nlohmann::json kaboumDecisions(const std::vector<PolytopePair>& pairs) {
+  using collision::PairVerdict;
+  int spheresApart = 0, innerBallsOverlap = 0, portal = 0, gjk = 0;
+  for (const PolytopePair& pair : pairs) {
+    const collision::ConvexPolytope a(pair.localA), b(pair.localB);
+    const collision::TransformedSupport bInA(b, pair.poseA.inverse() * pair.poseB);
+    const PairVerdict spheres = collision::sphereVerdict(a, bInA);
+    if (spheres == PairVerdict::separated) {
+      ++spheresApart;
+    } else if (spheres == PairVerdict::intersecting) {
+      ++innerBallsOverlap;
+    } else if (collision::portalIntersects(a, bInA) != PairVerdict::unknown) {
+      ++portal;
+    } else {
+      ++gjk;
+    }
+  }
+  return {{"bounding_spheres_apart", spheresApart},
+          {"inner_balls_overlap", innerBallsOverlap},
+          {"portal", portal},
+          {"gjk", gjk}};
+}
+
 // Section "pairs": random convex polytope pairs per vertex count, every library side by side.
 nlohmann::json runPairSection(const CollisionBenchOptions& options) {
   nlohmann::json section;
@@ -307,8 +332,11 @@ nlohmann::json runPairSection(const CollisionBenchOptions& options) {
       }
       methods[r.name] = entry;
     }
-    section[std::to_string(n)] = {
-        {"pairs", options.pairs}, {"overlapping", overlapping}, {"methods", methods}};
+    const nlohmann::json decisions = kaboumDecisions(pairs);
+    section[std::to_string(n)] = {{"pairs", options.pairs},
+                                  {"overlapping", overlapping},
+                                  {"kaboum_boolean_decided_by", decisions},
+                                  {"methods", methods}};
 
     if (!options.json) {
       std::printf(
@@ -316,6 +344,12 @@ nlohmann::json runPairSection(const CollisionBenchOptions& options) {
           "%d runs\n",
           n, options.pairs, overlapping, static_cast<unsigned long long>(options.seed),
           options.runs);
+      std::printf(
+          "kaboum boolean decided by: bounding spheres apart %d, inner balls overlapping %d, "
+          "portal test %d, GJK %d\n",
+          decisions["bounding_spheres_apart"].get<int>(),
+          decisions["inner_balls_overlap"].get<int>(), decisions["portal"].get<int>(),
+          decisions["gjk"].get<int>());
       std::printf("%-25s %10s %8s %11s %8s %7s %10s %7s %9s %10s\n", "method", "bool ns", "ratio",
                   "dist ns", "ratio", "missed", "deepest", "alarms", "dist>true", "largest");
       for (const MethodReport& r : reports) {

@@ -1,12 +1,15 @@
 // ConvexPolytope and TransformedSupport: the support mapping every narrow-phase query relies on.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
+#include <numbers>
 #include <random>
 
 #include "kaboum/collision/convex_polytope.hpp"
 #include "kaboum/collision/polytope_pairs.hpp"
 #include "kaboum/core/error.hpp"
+#include "kaboum/geometry/convex_hull.hpp"
 #include "kaboum/io/mesh_io.hpp"
 
 namespace kaboum::collision {
@@ -82,6 +85,74 @@ TEST(ConvexPolytope, BoundingBoxAndSphereContainEveryVertex) {
               polytope.boundingSphereRadius() + 1e-12);
   }
   EXPECT_LE(polytope.boundingSphereRadius(), 0.5 * polytope.localBox().diagonal().norm() + 1e-12);
+}
+
+// Farthest vertex from `c`.
+double farthest(const std::vector<Vec3>& points, const Vec3& c) {
+  double best = 0;
+  for (const Vec3& p : points) best = std::max(best, (p - c).norm());
+  return best;
+}
+
+// The pre-tests' spheres: the bounding sphere holds every vertex and is never looser than the
+// one centred on the box; the inner ball stays behind every facet plane of an independently
+// computed hull, on random shapes and real robot links.
+TEST(ConvexPolytope, InnerBallIsInsideAndBoundingSphereHoldsEveryVertex) {
+  std::vector<std::vector<Vec3>> shapes;
+  for (const int n : {4, 8, 16, 64}) {
+    for (const PolytopePair& pair : randomPolytopePairs(30, n, 17)) shapes.push_back(pair.localA);
+  }
+  for (const char* name : {"kr5-wrist.stl", "kr5-base-link.stl", "wam2.stl"}) {
+    shapes.push_back(readMesh(std::string(KABOUM_DATA_DIR) + "/meshes/" + name).vertices);
+  }
+  for (const auto& points : shapes) {
+    const ConvexPolytope polytope(points);
+    const double scale = polytope.localBox().diagonal().norm();
+    EXPECT_LE(farthest(points, polytope.boundingSphereCenter()),
+              polytope.boundingSphereRadius() + 1e-12 * scale);
+    EXPECT_LE(polytope.boundingSphereRadius(),
+              farthest(points, polytope.localBox().center()) + 1e-12 * scale);
+    EXPECT_GT(polytope.innerSphereRadius(), 0.0);
+    for (const HullPlane& plane : convexHull(points).planes) {
+      EXPECT_LE(plane.normal.dot(polytope.innerSphereCenter()) + polytope.innerSphereRadius(),
+                plane.offset + 1e-12 * scale);
+    }
+  }
+}
+
+// On shapes whose extreme spheres are known, the searched spheres come close to them.
+TEST(ConvexPolytope, SpheresAreNearlyTheLargestInnerAndSmallestBoundingOnes) {
+  // Tetrahedron: inradius 3 V / (total face area).
+  const std::vector<Vec3> tetrahedron = {Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(0, 1, 0),
+                                         Vec3(0, 0, 0.5)};
+  const ConvexPolytope tetra(tetrahedron);
+  const Vec3 a = tetrahedron[1] - tetrahedron[0], b = tetrahedron[2] - tetrahedron[0],
+             c = tetrahedron[3] - tetrahedron[0];
+  const double volume = std::abs(a.dot(b.cross(c))) / 6;
+  const double area =
+      0.5 * (a.cross(b).norm() + b.cross(c).norm() + c.cross(a).norm() +
+             (tetrahedron[2] - tetrahedron[1]).cross(tetrahedron[3] - tetrahedron[1]).norm());
+  const double inradius = 3 * volume / area;
+  EXPECT_LE(tetra.innerSphereRadius(), inradius + 1e-12);
+  EXPECT_GE(tetra.innerSphereRadius(), 0.9 * inradius);
+  // A cube with one corner pulled out: the smallest enclosing sphere is no longer centred on the
+  // box (its centre moves towards the far corner), and the unit cube's inner ball has radius 0.5.
+  std::vector<Vec3> cube;
+  for (int i = 0; i < 8; ++i) cube.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+  const ConvexPolytope unit(cube);
+  EXPECT_NEAR(unit.innerSphereRadius(), 0.5, 1e-9);
+  EXPECT_NEAR(unit.boundingSphereRadius(), std::sqrt(3.0) / 2, 1e-9);
+  // Points on a unit sphere plus one pole: the smallest enclosing sphere has radius 1.
+  std::vector<Vec3> capped;
+  for (int i = 0; i < 12; ++i) {
+    const double angle = 2 * std::numbers::pi * i / 12;
+    capped.emplace_back(std::cos(angle), std::sin(angle), 0.0);
+  }
+  capped.emplace_back(0, 0, 1);
+  capped.emplace_back(0, 0, -0.2);
+  const ConvexPolytope cap(capped);
+  EXPECT_LE(cap.boundingSphereRadius(), 1.0 + 1e-3);
+  EXPECT_LT(cap.boundingSphereRadius(), farthest(capped, cap.localBox().center()) - 0.01);
 }
 
 TEST(ConvexPolytope, TransformedSupportMatchesTransformedVertices) {

@@ -29,6 +29,14 @@ CollisionBody::CollisionBody(std::span<const std::vector<Vec3>> convexSets,
   tree_.build(boxes);
 }
 
+bool pieceWithinBody(const CollisionBody& body, const ConvexPolytope& piece,
+                     const PieceBounds& bounds, const Pose& inBody, double margin) {
+  const TransformedSupport placed(piece, inBody);
+  return !body.pieceTree().forEachOverlapping(
+      transformedAabb(bounds.box, inBody).inflated(margin),
+      [&](std::uint32_t i) { return !intersects(body.piece(i), placed, margin); });
+}
+
 bool bodiesCollide(const CollisionBody& a, const Pose& poseA, const CollisionBody& b,
                    const Pose& poseB, double margin) {
   // b in a's frame: a's pieces need no transform at all.
@@ -40,19 +48,8 @@ bool bodiesCollide(const CollisionBody& a, const Pose& poseA, const CollisionBod
   if (!spheresWithin(a.bounds().centre, a.bounds().radius, centreB, b.bounds().radius, margin)) {
     return false;
   }
-  const Aabb boxA = a.bounds().box.inflated(margin);
   for (std::size_t j = 0; j < b.pieceCount(); ++j) {
-    const PieceBounds& boundsB = b.pieceBounds(j);
-    const Aabb boxB = transformedAabb(boundsB.box, relative).inflated(margin);
-    if (!boxA.overlaps(boxB)) continue;
-    const Vec3 centreJ = relative * boundsB.centre;
-    const TransformedSupport pieceB(b.piece(j), relative);
-    const bool complete = a.pieceTree().forEachOverlapping(boxB, [&](std::uint32_t i) {
-      const PieceBounds& boundsA = a.pieceBounds(i);
-      return !(spheresWithin(boundsA.centre, boundsA.radius, centreJ, boundsB.radius, margin) &&
-               intersects(a.piece(i), pieceB, margin));
-    });
-    if (!complete) return true;
+    if (pieceWithinBody(a, b.piece(j), b.pieceBounds(j), relative, margin)) return true;
   }
   return false;
 }

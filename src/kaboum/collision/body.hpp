@@ -48,10 +48,16 @@ class CollisionBody {
 
 using BodyPtr = std::shared_ptr<const CollisionBody>;
 
+// True when `piece` (with its culling `bounds`), placed in the body's frame by `inBody`, comes
+// within `margin` of some piece of `body`: its box there queries the body's piece tree, and the
+// narrow phase (sphere pre-tests, then portal/GJK) decides the pieces found. Allocates nothing.
+bool pieceWithinBody(const CollisionBody& body, const ConvexPolytope& piece,
+                     const PieceBounds& bounds, const Pose& inBody, double margin);
+
 // True when some pieces of `a` and `b` (posed by `poseA`, `poseB`) are within `margin` of each
 // other (single-sided: never false at distance <= margin; may be true slightly above, within the
-// narrow phase's tolerance). Runs in a's frame: each piece of b, boxed there, queries a's piece
-// tree, and spheres cull the remaining pairs before GJK. Allocates nothing.
+// narrow phase's tolerance). Runs in a's frame: each piece of b goes through pieceWithinBody().
+// Allocates nothing.
 bool bodiesCollide(const CollisionBody& a, const Pose& poseA, const CollisionBody& b,
                    const Pose& poseB, double margin);
 

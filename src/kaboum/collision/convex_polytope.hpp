@@ -54,10 +54,15 @@ class ConvexPolytope {
             neighbors_.data() + neighborBegin_[index + 1]};
   }
 
-  // Axis-aligned box and a bounding sphere in the local frame, for cheap rejection.
+  // Axis-aligned box and a bounding sphere in the local frame, for cheap rejection. The sphere
+  // is close to the smallest enclosing one (its radius is exact for its centre).
   [[nodiscard]] const Eigen::AlignedBox3d& localBox() const { return box_; }
   [[nodiscard]] const Vec3& boundingSphereCenter() const { return sphereCenter_; }
   [[nodiscard]] double boundingSphereRadius() const { return sphereRadius_; }
+  // A ball inside the polytope (close to the largest one; its radius is the exact facet clearance
+  // of its centre), for cheap acceptance: two such balls overlapping prove the polytopes do.
+  [[nodiscard]] const Vec3& innerSphereCenter() const { return innerCenter_; }
+  [[nodiscard]] double innerSphereRadius() const { return innerRadius_; }
 
  private:
   std::uint32_t climb(const Vec3& direction, std::uint32_t start) const;
@@ -77,6 +82,8 @@ class ConvexPolytope {
   Eigen::AlignedBox3d box_;
   Vec3 sphereCenter_;
   double sphereRadius_ = 0.0;
+  Vec3 innerCenter_;
+  double innerRadius_ = 0.0;
 };
 
 // A polytope placed by a rigid transform (local → world). The direction is rotated into the
@@ -170,7 +177,9 @@ class TransformedSupport {
             r(1, 0) * p.x() + r(1, 1) * p.y() + r(1, 2) * p.z() + translation_.y(),
             r(2, 0) * p.x() + r(2, 1) * p.y() + r(2, 2) * p.z() + translation_.z()};
   }
-  [[nodiscard]] Vec3 center() const { return rotation_ * polytope_->center() + translation_; }
+  [[nodiscard]] Vec3 center() const { return place(polytope_->center()); }
+  // A point of the polytope's local frame, placed.
+  [[nodiscard]] Vec3 place(const Vec3& local) const { return rotation_ * local + translation_; }
 
   [[nodiscard]] const ConvexPolytope& polytope() const { return *polytope_; }
   [[nodiscard]] const Eigen::Matrix3d& rotation() const { return rotation_; }
@@ -184,6 +193,55 @@ class TransformedSupport {
 
 static_assert(SupportMapping<ConvexPolytope>);
 static_assert(SupportMapping<TransformedSupport>);
+
+// Conservative pre-test of a pair from the polytopes' spheres, with b placed in a's frame (the
+// frame of a's vertices): `separated` when the bounding spheres are more than margin +
+// tolerance.absolute apart (the distance is at least their gap), `intersecting` when the inner
+// balls come within margin (they lie inside the polytopes), `unknown` otherwise.
+inline PairVerdict sphereVerdict(const ConvexPolytope& a, const TransformedSupport& b,
+                                 double margin = 0.0, const GjkTolerance& tolerance = {}) {
+  const ConvexPolytope& polytopeB = b.polytope();
+  const double outerReach =
+      a.boundingSphereRadius() + polytopeB.boundingSphereRadius() + margin + tolerance.absolute;
+  if ((b.place(polytopeB.boundingSphereCenter()) - a.boundingSphereCenter()).squaredNorm() >
+      outerReach * outerReach) {
+    return PairVerdict::separated;
+  }
+  const double innerReach = a.innerSphereRadius() + polytopeB.innerSphereRadius() + margin;
+  if ((b.place(polytopeB.innerSphereCenter()) - a.innerSphereCenter()).squaredNorm() <=
+      innerReach * innerReach) {
+    return PairVerdict::intersecting;
+  }
+  return PairVerdict::unknown;
+}
+
+// The pair queries of gjk.hpp for a polytope in its own frame and one placed in that frame,
+// sphereVerdict() first (chosen over the generic templates of gjk.hpp).
+inline bool intersects(const ConvexPolytope& a, const TransformedSupport& b, double margin = 0.0,
+                       GjkCache<ConvexPolytope, TransformedSupport>* cache = nullptr,
+                       const GjkTolerance& tolerance = {}) {
+  const PairVerdict verdict = sphereVerdict(a, b, margin, tolerance);
+  if (verdict != PairVerdict::unknown) return verdict == PairVerdict::intersecting;
+  return intersects<ConvexPolytope, TransformedSupport>(a, b, margin, cache, tolerance);
+}
+
+// When the inner balls overlap, the pair intersects at a point of the segment between their
+// centres that lies in both balls; otherwise GJK.
+inline DistanceResult distance(const ConvexPolytope& a, const TransformedSupport& b,
+                               GjkCache<ConvexPolytope, TransformedSupport>* cache = nullptr,
+                               const GjkTolerance& tolerance = {}) {
+  const Vec3 centerB = b.place(b.polytope().innerSphereCenter());
+  const double radiusA = a.innerSphereRadius();
+  const double reach = radiusA + b.polytope().innerSphereRadius();
+  if (reach > 0.0 && (centerB - a.innerSphereCenter()).squaredNorm() <= reach * reach) {
+    DistanceResult result;
+    result.intersecting = true;
+    result.pointA = a.innerSphereCenter() + (radiusA / reach) * (centerB - a.innerSphereCenter());
+    result.pointB = result.pointA;
+    return result;
+  }
+  return distance<ConvexPolytope, TransformedSupport>(a, b, cache, tolerance);
+}
 
 // GJK between two placed polytopes runs in a's local frame: b is placed by the relative pose
 // a⁻¹ b, so a's support is a plain scan and only b's direction and point are transformed. These
@@ -199,13 +257,15 @@ inline TransformedSupport inFrameOf(const TransformedSupport& a, const Transform
 using PlacedPairCache = GjkCache<TransformedSupport, TransformedSupport>;
 using LocalPairCache = GjkCache<ConvexPolytope, TransformedSupport>;
 
-inline LocalPairCache localCache(const PlacedPairCache* cache) {
-  if (cache == nullptr) return {};
-  return {cache->direction, cache->hintA, cache->hintB};
-}
-
-inline void storeCache(const LocalPairCache& local, PlacedPairCache* cache) {
-  if (cache != nullptr) *cache = {local.direction, local.hintA, local.hintB};
+// Runs `query(local cache or nullptr)` with the placed cache's state moved into a's frame and
+// back: a null cache stays null (a cold query).
+template <class Query>
+auto withLocalCache(PlacedPairCache* cache, Query&& query) {
+  if (cache == nullptr) return query(nullptr);
+  LocalPairCache local{cache->direction, cache->hintA, cache->hintB};
+  auto result = query(&local);
+  *cache = {local.direction, local.hintA, local.hintB};
+  return result;
 }
 
 }  // namespace detail
@@ -213,20 +273,21 @@ inline void storeCache(const LocalPairCache& local, PlacedPairCache* cache) {
 inline bool intersects(const TransformedSupport& a, const TransformedSupport& b,
                        double margin = 0.0, detail::PlacedPairCache* cache = nullptr,
                        const GjkTolerance& tolerance = {}) {
-  detail::LocalPairCache local = detail::localCache(cache);
-  const bool hit = intersects(a.polytope(), detail::inFrameOf(a, b), margin, &local, tolerance);
-  detail::storeCache(local, cache);
-  return hit;
+  const TransformedSupport bInA = detail::inFrameOf(a, b);
+  return detail::withLocalCache(cache, [&](detail::LocalPairCache* local) {
+    return intersects(a.polytope(), bInA, margin, local, tolerance);
+  });
 }
 
 inline DistanceResult distance(const TransformedSupport& a, const TransformedSupport& b,
                                detail::PlacedPairCache* cache = nullptr,
                                const GjkTolerance& tolerance = {}) {
-  detail::LocalPairCache local = detail::localCache(cache);
-  DistanceResult result = distance(a.polytope(), detail::inFrameOf(a, b), &local, tolerance);
-  detail::storeCache(local, cache);
-  result.pointA = a.rotation() * result.pointA + a.translation();
-  result.pointB = a.rotation() * result.pointB + a.translation();
+  const TransformedSupport bInA = detail::inFrameOf(a, b);
+  DistanceResult result = detail::withLocalCache(cache, [&](detail::LocalPairCache* local) {
+    return distance(a.polytope(), bInA, local, tolerance);
+  });
+  result.pointA = a.place(result.pointA);
+  result.pointB = a.place(result.pointB);
   return result;
 }
 

@@ -103,14 +103,25 @@ double determinant(const Vec3& a, const Vec3& b, const Vec3& c) {
   return a.dot(b.cross(c));
 }
 
+// Signed volumes of the tetrahedron (w0, w1, w2, w3) with the origin in place of each vertex;
+// they sum to the whole volume.
+std::array<double, 4> signedVolumes(const Vec3& w0, const Vec3& w1, const Vec3& w2,
+                                    const Vec3& w3) {
+  return {determinant(w1, w2, w3), -determinant(w0, w2, w3), determinant(w0, w1, w3),
+          -determinant(w0, w1, w2)};
+}
+
+bool allShareSign(double total, const std::array<double, 4>& c) {
+  return sameSign(total, c[0]) && sameSign(total, c[1]) && sameSign(total, c[2]) &&
+         sameSign(total, c[3]);
+}
+
 // Tetrahedron (S3D): signed volumes with the origin in place of each vertex; they all share the
 // sign of the whole volume exactly when the origin is inside. Returns true then.
 bool closestOnTetrahedron(const Vec3* w, FaceSolution& out) {
-  const std::array<double, 4> c = {determinant(w[1], w[2], w[3]), -determinant(w[0], w[2], w[3]),
-                                   determinant(w[0], w[1], w[3]), -determinant(w[0], w[1], w[2])};
+  const std::array<double, 4> c = signedVolumes(w[0], w[1], w[2], w[3]);
   const double total = c[0] + c[1] + c[2] + c[3];
-  if (sameSign(total, c[0]) && sameSign(total, c[1]) && sameSign(total, c[2]) &&
-      sameSign(total, c[3])) {
+  if (allShareSign(total, c)) {
     out.count = 4;
     out.index = {0, 1, 2, 3};
     for (int i = 0; i < 4; ++i) out.lambda[i] = c[i] / total;
@@ -154,13 +165,17 @@ bool reduceSimplex(Simplex& simplex, Vec3& closest) {
   for (int i = 0; i < solution.count; ++i) {
     const int from = solution.index[i];
     simplex.w[i] = simplex.w[from];
-    simplex.a[i] = simplex.a[from];
-    simplex.b[i] = simplex.b[from];
+    simplex.kept[i] = from;
     simplex.lambda[i] = solution.lambda[i];
   }
   simplex.size = solution.count;
   closest = solution.point;
   return inside;
+}
+
+bool originInsideTetrahedron(const Vec3& w0, const Vec3& w1, const Vec3& w2, const Vec3& w3) {
+  const std::array<double, 4> c = signedVolumes(w0, w1, w2, w3);
+  return allShareSign(c[0] + c[1] + c[2] + c[3], c);
 }
 
 }  // namespace kaboum::collision::detail

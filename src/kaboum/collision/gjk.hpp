@@ -42,35 +42,43 @@ struct DistanceResult {
 
 namespace detail {
 
-// Points of the Minkowski difference a − b with the support points they came from, and the
-// barycentric weights of the current closest point.
+// Points of the Minkowski difference a − b and the barycentric weights of the current closest
+// point. reduceSimplex() records in `kept` where each remaining point was before compaction.
 struct Simplex {
   std::array<Vec3, 4> w;
-  std::array<Vec3, 4> a;
-  std::array<Vec3, 4> b;
   std::array<double, 4> lambda{};
+  std::array<int, 4> kept{};
   int size = 0;
 
-  void add(const Vec3& pointW, const Vec3& pointA, const Vec3& pointB) {
-    w[size] = pointW;
-    a[size] = pointA;
-    b[size] = pointB;
-    ++size;
-  }
   [[nodiscard]] bool contains(const Vec3& point) const {
     for (int i = 0; i < size; ++i) {
       if (w[i] == point) return true;
     }
     return false;
   }
-  [[nodiscard]] Vec3 pointA() const {
+};
+
+// The support points on a and b each simplex point came from: distance queries keep them for the
+// witness points, boolean queries do without.
+struct SimplexWitnesses {
+  std::array<Vec3, 4> a;
+  std::array<Vec3, 4> b;
+
+  // Follows the simplex's last compaction.
+  void compact(const Simplex& simplex) {
+    for (int i = 0; i < simplex.size; ++i) {
+      a[i] = a[simplex.kept[i]];
+      b[i] = b[simplex.kept[i]];
+    }
+  }
+  [[nodiscard]] Vec3 pointA(const Simplex& simplex) const {
     Vec3 p = Vec3::Zero();
-    for (int i = 0; i < size; ++i) p += lambda[i] * a[i];
+    for (int i = 0; i < simplex.size; ++i) p += simplex.lambda[i] * a[i];
     return p;
   }
-  [[nodiscard]] Vec3 pointB() const {
+  [[nodiscard]] Vec3 pointB(const Simplex& simplex) const {
     Vec3 p = Vec3::Zero();
-    for (int i = 0; i < size; ++i) p += lambda[i] * b[i];
+    for (int i = 0; i < simplex.size; ++i) p += simplex.lambda[i] * b[i];
     return p;
   }
 };
@@ -80,15 +88,23 @@ struct Simplex {
 // true when the origin lies inside the tetrahedron (the simplex then keeps its 4 points).
 bool reduceSimplex(Simplex& simplex, Vec3& closest);
 
+// Whether the origin lies strictly inside the tetrahedron (w0, w1, w2, w3): the four signed
+// volumes with the origin in place of each vertex share the sign of the whole volume.
+bool originInsideTetrahedron(const Vec3& w0, const Vec3& w1, const Vec3& w2, const Vec3& w3);
+
+// Directions shorter than this (squared) are not used: squaring them would underflow.
+constexpr double kShortestSquared = 1e-200;
+
 enum class GjkExit { separated, intersecting, converged, stalled };
 
 // The GJK loop. Boolean mode stops as soon as a support point certifies distance > margin +
 // tolerance.absolute, or the simplex comes within margin + tolerance.absolute of the origin;
 // distance mode runs to convergence and tracks the best certified lower bound.
+// Distance mode records the support points in `witnesses`; boolean mode passes nullptr.
 template <bool kBoolean, SupportMapping A, SupportMapping B>
 GjkExit runGjk(const A& a, const B& b, double margin, GjkCache<A, B>* cache,
-               const GjkTolerance& tolerance, Simplex& simplex, double& lowerBound,
-               int& iterations) {
+               const GjkTolerance& tolerance, Simplex& simplex,
+               [[maybe_unused]] SimplexWitnesses* witnesses, double& lowerBound, int& iterations) {
   typename A::Hint hintA{};
   typename B::Hint hintB{};
   Vec3 v = Vec3::Zero();
@@ -97,8 +113,6 @@ GjkExit runGjk(const A& a, const B& b, double margin, GjkCache<A, B>* cache,
     hintB = cache->hintB;
     v = cache->direction;
   }
-  // Directions too short to square without underflow are replaced.
-  constexpr double kShortestSquared = 1e-200;
   if (!(v.squaredNorm() > kShortestSquared)) v = a.center() - b.center();
   if (!(v.squaredNorm() > kShortestSquared)) v = Vec3::UnitX();
 
@@ -131,9 +145,15 @@ GjkExit runGjk(const A& a, const B& b, double margin, GjkCache<A, B>* cache,
       }
       if (simplex.contains(w)) break;
     }
-    simplex.add(w, pointA, pointB);
+    if constexpr (!kBoolean) {
+      witnesses->a[simplex.size] = pointA;
+      witnesses->b[simplex.size] = pointB;
+    }
+    simplex.w[simplex.size++] = w;
     const bool hadUpperBound = simplex.size > 1;
-    if (reduceSimplex(simplex, v)) {
+    const bool inside = reduceSimplex(simplex, v);
+    if constexpr (!kBoolean) witnesses->compact(simplex);
+    if (inside) {
       exit = GjkExit::intersecting;
       break;
     }
@@ -157,17 +177,122 @@ GjkExit runGjk(const A& a, const B& b, double margin, GjkCache<A, B>* cache,
 
 }  // namespace detail
 
+// A conservative answer to "distance(a, b) <= margin": `unknown` when the test at hand cannot
+// decide, otherwise backed by a certificate (a separating plane, or the origin strictly inside a
+// tetrahedron of points of a − b).
+enum class PairVerdict { separated, intersecting, unknown };
+
+// Minkowski Portal Refinement (Snethen's XenoCollide, the boolean test of libccd) on a − b, from
+// its interior point center(a) − center(b). `separated` only when a support point certifies
+// distance > margin + tolerance.absolute (as GJK's early exit), `intersecting` only when the
+// origin lies strictly inside the final portal's tetrahedron; degenerate portals, stalls and the
+// band near contact give `unknown` (GJK decides those). Allocates nothing.
+template <SupportMapping A, SupportMapping B>
+PairVerdict portalIntersects(const A& a, const B& b, double margin = 0.0,
+                             const GjkTolerance& tolerance = {}) {
+  typename A::Hint hintA{};
+  typename B::Hint hintB{};
+  // The point of a − b maximising d.x.
+  const auto support = [&](const Vec3& d) -> Vec3 {
+    return a.support(d, hintA) - b.support(-d, hintB);
+  };
+  const double separation = margin + tolerance.absolute;
+  // p maximises d.x over a − b: when p.d < -separation |d|, the plane through p normal to d keeps
+  // a − b farther than `separation` from the origin.
+  const auto separates = [separation](const Vec3& p, const Vec3& d) {
+    const double pd = p.dot(d);
+    return pd < 0.0 && pd * pd > separation * separation * d.squaredNorm();
+  };
+  // A direction too short (relative to the points it came from) to orient anything.
+  const auto degenerate = [](const Vec3& d, double scaleSquared) {
+    return !(d.squaredNorm() > 1e-24 * scaleSquared) ||
+           !(d.squaredNorm() > detail::kShortestSquared);
+  };
+
+  // Portal discovery: v0 inside, v1 towards the origin, then v2 and v3 until the origin ray
+  // passes through the triangle (v1, v2, v3).
+  const Vec3 v0 = a.center() - b.center();
+  if (!(v0.squaredNorm() > detail::kShortestSquared)) return PairVerdict::unknown;
+  Vec3 d = -v0;
+  Vec3 v1 = support(d);
+  if (separates(v1, d)) return PairVerdict::separated;
+  if (!(v1.dot(d) > 0.0)) return PairVerdict::unknown;
+  d = v0.cross(v1);
+  if (degenerate(d, v0.squaredNorm() * v1.squaredNorm())) return PairVerdict::unknown;
+  Vec3 v2 = support(d);
+  if (separates(v2, d)) return PairVerdict::separated;
+  if (!(v2.dot(d) > 0.0)) return PairVerdict::unknown;
+  d = (v1 - v0).cross(v2 - v0);
+  if (d.dot(v0) > 0.0) {
+    std::swap(v1, v2);
+    d = -d;
+  }
+  Vec3 v3;
+  for (int iteration = 0;; ++iteration) {
+    if (iteration == tolerance.maxIterations) return PairVerdict::unknown;
+    v3 = support(d);
+    if (separates(v3, d)) return PairVerdict::separated;
+    if (!(v3.dot(d) > 0.0)) return PairVerdict::unknown;
+    if (v1.cross(v3).dot(v0) < 0.0) {
+      v2 = v3;  // the origin is outside (v1, v0, v3)
+    } else if (v3.cross(v2).dot(v0) < 0.0) {
+      v1 = v3;  // the origin is outside (v3, v0, v2)
+    } else {
+      break;
+    }
+    d = (v1 - v0).cross(v2 - v0);
+    if (degenerate(d, (v1 - v0).squaredNorm() * (v2 - v0).squaredNorm())) {
+      return PairVerdict::unknown;
+    }
+  }
+
+  // Portal refinement: push the portal (v1, v2, v3) outwards until the origin is behind it or a
+  // support point certifies a separation.
+  for (int iteration = 0; iteration < tolerance.maxIterations; ++iteration) {
+    d = (v2 - v1).cross(v3 - v1);
+    if (degenerate(d, (v2 - v1).squaredNorm() * (v3 - v1).squaredNorm())) break;
+    if (d.dot(v1) >= 0.0) {
+      return detail::originInsideTetrahedron(v0, v1, v2, v3) ? PairVerdict::intersecting
+                                                             : PairVerdict::unknown;
+    }
+    const Vec3 v4 = support(d);
+    if (separates(v4, d)) return PairVerdict::separated;
+    const double v4d = v4.dot(d);
+    // The portal cannot move past the origin, or no longer moves beyond the tolerance.
+    const double progress = v4d - v1.dot(d);
+    if (!(v4d > 0.0) ||
+        !(progress > 0.0 &&
+          progress * progress > tolerance.absolute * tolerance.absolute * d.squaredNorm())) {
+      break;
+    }
+    // Keep the triangle of (v1, v2, v3, v4) that the origin ray passes through.
+    const Vec3 c = v4.cross(v0);
+    if (v1.dot(c) > 0.0) {
+      (v2.dot(c) > 0.0 ? v1 : v3) = v4;
+    } else {
+      (v3.dot(c) > 0.0 ? v2 : v1) = v4;
+    }
+  }
+  return PairVerdict::unknown;
+}
+
 // True when distance(a, b) <= margin (margin >= 0). Single-sided: never false when the true
 // distance is <= margin; may be true for distances up to margin + 2 * tolerance.absolute +
 // tolerance.relative * distance, and is true when the iteration cannot certify a separation.
+// Without a cache, portalIntersects() answers first and GJK only runs when it is inconclusive;
+// with a cache, GJK runs warm-started.
 template <SupportMapping A, SupportMapping B>
 bool intersects(const A& a, const B& b, double margin = 0.0, GjkCache<A, B>* cache = nullptr,
                 const GjkTolerance& tolerance = {}) {
+  if (cache == nullptr) {
+    const PairVerdict verdict = portalIntersects(a, b, margin, tolerance);
+    if (verdict != PairVerdict::unknown) return verdict == PairVerdict::intersecting;
+  }
   detail::Simplex simplex;
   double lowerBound = 0.0;
   int iterations = 0;
-  return detail::runGjk<true>(a, b, margin, cache, tolerance, simplex, lowerBound, iterations) !=
-         detail::GjkExit::separated;
+  return detail::runGjk<true>(a, b, margin, cache, tolerance, simplex, nullptr, lowerBound,
+                              iterations) != detail::GjkExit::separated;
 }
 
 // Separation distance and witness points. The distance never exceeds the true distance (beyond
@@ -177,13 +302,14 @@ template <SupportMapping A, SupportMapping B>
 DistanceResult distance(const A& a, const B& b, GjkCache<A, B>* cache = nullptr,
                         const GjkTolerance& tolerance = {}) {
   detail::Simplex simplex;
+  detail::SimplexWitnesses witnesses;
   DistanceResult result;
-  const detail::GjkExit exit = detail::runGjk<false>(a, b, 0.0, cache, tolerance, simplex,
-                                                     result.distance, result.iterations);
+  const detail::GjkExit exit = detail::runGjk<false>(
+      a, b, 0.0, cache, tolerance, simplex, &witnesses, result.distance, result.iterations);
   result.intersecting = exit == detail::GjkExit::intersecting;
   if (result.intersecting) result.distance = 0.0;
-  result.pointA = simplex.pointA();
-  result.pointB = simplex.pointB();
+  result.pointA = witnesses.pointA(simplex);
+  result.pointB = witnesses.pointB(simplex);
   return result;
 }
 

@@ -1,7 +1,5 @@
 #include "kaboum/collision/scene.hpp"
 
-#include <array>
-
 namespace kaboum::collision {
 
 std::size_t CollisionScene::add(BodyPtr body, const Pose& pose, std::string name) {
@@ -61,38 +59,31 @@ std::optional<std::size_t> CollisionScene::firstCollision(const CollisionBody& b
     return firstWithin(TransformedSupport(body.piece(0), pose), transformedAabb(bounds.box, pose),
                        pose * bounds.centre, bounds.radius, margin, ignore);
   }
-  // One tree query for the whole body; its pieces then test only those candidates.
-  std::array<std::uint32_t, kMaxCandidates> candidates{};
-  std::size_t count = 0;
-  const bool complete = tree_.forEachOverlapping(
-      transformedAabb(body.bounds().box, pose).inflated(margin), [&](std::uint32_t slot) {
-        if (slots_[slot].object == ignore) return true;
-        candidates[count++] = slot;
-        return count < candidates.size();
+  // One scene-tree query for the whole body; each obstacle piece found, placed in the body's
+  // frame, then queries the body's piece tree (pieceWithinBody, as bodiesCollide does).
+  const Eigen::Matrix3d toBody = pose.linear().transpose();
+  const PieceBounds& own = body.bounds();
+  std::optional<std::size_t> hit;
+  tree_.forEachOverlapping(
+      transformedAabb(own.box, pose).inflated(margin), [&](std::uint32_t slotId) {
+        const Slot& slot = slots_[slotId];
+        if (slot.object == ignore) return true;
+        const Object& object = objects_[slot.object];
+        const PieceBounds& bounds = object.body->pieceBounds(slot.piece);
+        if (!spheresWithin(own.centre, own.radius, toBody * (slot.centre - pose.translation()),
+                           bounds.radius, margin)) {
+          return true;
+        }
+        Pose inBody = Pose::Identity();
+        inBody.linear() = toBody * object.pose.linear();
+        inBody.translation() = toBody * (object.pose.translation() - pose.translation());
+        if (!pieceWithinBody(body, object.body->piece(slot.piece), bounds, inBody, margin)) {
+          return true;
+        }
+        hit = slot.object;
+        return false;
       });
-  if (complete && count == 0) return std::nullopt;
-  for (std::size_t p = 0; p < body.pieceCount(); ++p) {
-    const PieceBounds& bounds = body.pieceBounds(p);
-    const TransformedSupport piece(body.piece(p), pose);
-    const Aabb box = transformedAabb(bounds.box, pose).inflated(margin);
-    const Vec3 centre = pose * bounds.centre;
-    if (!complete) {  // more candidates than the buffer holds: query per piece
-      if (auto hit = firstWithin(piece, box, centre, bounds.radius, margin, ignore)) return hit;
-      continue;
-    }
-    for (std::size_t c = 0; c < count; ++c) {
-      const Slot& slot = slots_[candidates[c]];
-      const Object& object = objects_[slot.object];
-      if (slotBoxes_[candidates[c]].overlaps(box) &&
-          spheresWithin(centre, bounds.radius, slot.centre,
-                        object.body->pieceBounds(slot.piece).radius, margin) &&
-          intersects(piece, TransformedSupport(object.body->piece(slot.piece), object.pose),
-                     margin)) {
-        return slot.object;
-      }
-    }
-  }
-  return std::nullopt;
+  return hit;
 }
 
 }  // namespace kaboum::collision

@@ -78,7 +78,6 @@ class CollisionScene {
   };
   void rebuild();
   static Aabb worldBox(const ConvexPolytope& piece, const Pose& pose);
-  static constexpr std::size_t kMaxCandidates = 64;  // broad-phase hits buffered per body query
 
   std::vector<Object> objects_;
   std::vector<Slot> slots_;
