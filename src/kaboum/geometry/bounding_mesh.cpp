@@ -269,7 +269,7 @@ void BoundingMeshSimplifier::initQuadrics() {
 
 void BoundingMeshSimplifier::addHalfSpace(std::uint32_t t, const Vec3& origin) {
   const Vec3& n = normals_[t];
-  if (n == Vec3::Zero()) return;  // a degenerate triangle has no plane to stay above
+  if (n.x() == 0.0 && n.y() == 0.0 && n.z() == 0.0) return;  // degenerate: no plane to stay above
   const double sign = options_.side == BoundSide::Outer ? 1.0 : -1.0;
   halfSpaces_.push_back({sign * n, sign * (offsets_[t] - n.dot(origin))});
 }

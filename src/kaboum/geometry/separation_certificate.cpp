@@ -30,10 +30,13 @@ bool farEdgeClear(const PlanedTriangle& t, int shared, const Vec3& p, const Vec3
   const Vec3 x = p + (hp / rise) * pq - s;  // X relative to s
   const Vec3 e1 = *t.corners[(shared + 1) % 3] - s, e2 = *t.corners[(shared + 2) % 3] - s;
   // t's angle at s is {y : (e1 × y)·n ≥ 0, (y × e2)·n ≥ 0}; X's distance to it is at least its
-  // distance to either bounding half-plane it lies outside.
-  const double outside1 = -e1.cross(x).dot(t.unitNormal) / e1.norm();
-  const double outside2 = -x.cross(e2).dot(t.unitNormal) / e2.norm();
-  return std::max(outside1, outside2) > kOutsideAngle * margin;
+  // distance to either bounding half-plane it lies outside, -(e1 × X)·n / |e1| or -(X × e2)·n /
+  // |e2| (compared squared, without roots).
+  const double limit = kOutsideAngle * margin;
+  const double outside1 = -e1.cross(x).dot(t.unitNormal);
+  if (outside1 > 0.0 && outside1 * outside1 > limit * limit * e1.squaredNorm()) return true;
+  const double outside2 = -x.cross(e2).dot(t.unitNormal);
+  return outside2 > 0.0 && outside2 * outside2 > limit * limit * e2.squaredNorm();
 }
 
 bool allBeyondPlane(const PlanedTriangle& t, const PlanedTriangle& u, double margin) {
