@@ -19,13 +19,18 @@ struct PlanedTriangle {
   double sizeSquared;  // at least the longest edge squared, e.g. the diagonal of its box squared
 };
 
-// True only when meshTrianglesIntersect(t, u) is certain to answer false: the triangles share an
-// edge, or (both well shaped: crossLength ≥ 1.01e-4 size²) every corner of one that is not shared
-// lies clearly on one side of the other's plane. "Clearly" is 1.01e-6 size for triangles sharing
-// a vertex (the predicate's own certificate, with 1% slack for the different rounding of cached
-// normals) and 1e-4 size for disjoint ones, where its determinant signs are exact beyond
-// ~4e-10 size³ while |det| = |normal| · height ≥ 1e-8 size³. Disjoint triangles farther apart than
-// 2 size (first corners) are left to the predicate. False means "not certain", not "they meet".
+// True only when meshTrianglesIntersect(t, u) is certain to answer false. Both must be well shaped
+// (crossLength ≥ 1.01e-4 size²). Triangles sharing an edge are ignored by the predicate. For
+// triangles sharing one vertex the predicate tests each far edge against the other triangle; an
+// edge is cleared when both its ends lie beyond m = 1.01e-6 size on one side of the other plane
+// (the predicate's own certificate, with 1% slack for the different rounding of cached normals), or
+// when it is steep to that plane (end heights differ by ≥ 1% of its length) and crosses it more
+// than 200 m outside the other triangle's angle at the shared vertex: then it stays farther than m
+// from that triangle, far beyond the predicate's contact tolerance (1e-12 size) and rounding.
+// Disjoint triangles are cleared when one lies beyond 1e-4 size on one side of the other's plane,
+// where its determinant signs are exact beyond ~4e-10 size³ while |det| = |normal| · height ≥ 1e-8
+// size³; those farther apart than 2 size (first corners) are left to the predicate. False means
+// "not certain", not "they meet".
 bool certainlyApart(const PlanedTriangle& t, const PlanedTriangle& u);
 
 }  // namespace kaboum
