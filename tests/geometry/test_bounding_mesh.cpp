@@ -3,8 +3,10 @@
 // in the reference implementation.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <map>
+#include <random>
 #include <set>
 
 #include "kaboum/core/error.hpp"
@@ -12,7 +14,10 @@
 #include "kaboum/geometry/mesh_analysis.hpp"
 #include "kaboum/geometry/mesh_cleanup.hpp"
 #include "kaboum/geometry/mesh_comparison.hpp"
+#include "kaboum/geometry/separation_certificate.hpp"
 #include "kaboum/geometry/test_shapes.hpp"
+#include "kaboum/geometry/triangle_bvh.hpp"
+#include "kaboum/geometry/triangle_grid.hpp"
 #include "kaboum/io/mesh_io.hpp"
 
 namespace kaboum {
@@ -239,6 +244,88 @@ TEST(BoundingMesh, KnifeEdgesAreNeverContractedThroughThemselves) {
   expectWellFormed(slab, result.mesh, "slab");
   const ContainmentReport check = verifyContainment(slab, result.mesh, BoundSide::Outer, 2000, 1);
   EXPECT_EQ(check.violations, 0u);
+}
+
+// The guard clears a pair with certainlyApart only where the exact predicate would answer "apart":
+// pairs sharing a vertex or nothing, with the far corners at heights from 1e-9 to 1e-2 of the size
+// above or below the other's plane, straddling the certificate's margins.
+TEST(SeparationCertificate, NeverClearsAPairThePredicateFindsMeeting) {
+  std::mt19937_64 engine(31);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const auto inPlane = [&](const Vec3& around, const Vec3& u, const Vec3& w, double scale) {
+    return Vec3(around + scale * (unit(engine) * u + unit(engine) * w));
+  };
+  const auto planed = [](const std::array<Vec3, 3>& c, const Triangle& ids) {
+    const Vec3 cross = (c[1] - c[0]).cross(c[2] - c[0]);
+    const double longest = std::max(
+        {(c[1] - c[0]).squaredNorm(), (c[2] - c[1]).squaredNorm(), (c[0] - c[2]).squaredNorm()});
+    return PlanedTriangle{{&c[0], &c[1], &c[2]}, ids, cross.normalized(), cross.norm(), longest};
+  };
+  std::size_t cleared = 0, meeting = 0;
+  for (int trial = 0; trial < 200000; ++trial) {
+    const double scale = std::pow(10.0, 2.0 * unit(engine));
+    const Vec3 origin =
+        Vec3(5.0, -3.0, 8.0) + 10.0 * Vec3(unit(engine), unit(engine), unit(engine));
+    const std::array<Vec3, 3> t{origin, origin + scale * Vec3(1.0, 0.1 * unit(engine), 0.0),
+                                origin + scale * Vec3(0.2 * unit(engine), 1.0, 0.1 * unit(engine))};
+    const Vec3 n = (t[1] - t[0]).cross(t[2] - t[0]).normalized();
+    const Vec3 u = (t[1] - t[0]).normalized(), w = n.cross(u);
+    const double side = unit(engine) < 0.6 ? 1.0 : -1.0;
+    const auto height = [&] {
+      const double sign = unit(engine) < 0.4 ? side : -side;
+      return sign * scale * std::pow(10.0, -2.0 - 7.0 * 0.5 * (unit(engine) + 1.0));
+    };
+    const int kind = trial % 3;  // 0: shared vertex, 1: disjoint, 2: shared edge
+    const Triangle tIds{0, 1, 2};
+    Triangle uIds{3, 4, 5};
+    std::array<Vec3, 3> other;
+    if (kind == 0) {
+      uIds = {0, 4, 5};
+      other = {t[0], inPlane(t[0], u, w, scale) + height() * n,
+               inPlane(t[0], u, w, scale) + height() * n};
+    } else if (kind == 1) {
+      for (Vec3& p : other) p = inPlane(t[0], u, w, scale) + height() * n;
+    } else {
+      uIds = {1, 0, 5};
+      other = {t[1], t[0], inPlane(t[0], u, w, scale) + height() * n};
+    }
+    const bool meet = meshTrianglesIntersect(t, tIds, other, uIds);
+    const bool apart = certainlyApart(planed(t, tIds), planed(other, uIds));
+    ASSERT_FALSE(apart && meet) << "trial " << trial;
+    if (kind == 2) {
+      ASSERT_TRUE(apart && !meet) << "trial " << trial;  // shared edges never meet
+    }
+    cleared += apart && kind != 2 ? 1 : 0;
+    meeting += meet ? 1 : 0;
+  }
+  std::printf("cleared %zu meeting %zu\n", cleared, meeting);
+  EXPECT_GT(cleared, 1000u);  // it clears many separated pairs that share no edge
+  EXPECT_GT(meeting, 3000u);  // and is tested against many pairs that do meet
+}
+
+// The guard's single-precision boxes must contain their triangles exactly (else a crossing pair
+// could be skipped): corners at every scale from 1e-30 to 1e30, of both signs, and zero.
+TEST(SeparationCertificate, TriangleBoxesContainTheirCornersAtEveryScale) {
+  std::mt19937_64 engine(32);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int trial = 0; trial < 20000; ++trial) {
+    std::array<Vec3, 3> corners;
+    for (Vec3& p : corners) {
+      for (int k = 0; k < 3; ++k)
+        p[k] = trial % 7 == 0 ? 0.0 : unit(engine) * std::pow(10.0, 30.0 * unit(engine));
+    }
+    const Box3 box = triangleBox(corners[0], corners[1], corners[2]);
+    for (const Vec3& p : corners) {
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_LE(static_cast<double>(box.lo[k]), p[k]) << "trial " << trial;
+        ASSERT_GE(static_cast<double>(box.hi[k]), p[k]) << "trial " << trial;
+      }
+    }
+    const double longest =
+        std::max({(corners[1] - corners[0]).squaredNorm(), (corners[2] - corners[1]).squaredNorm(),
+                  (corners[0] - corners[2]).squaredNorm()});
+    ASSERT_GE(box.diagonalSquared(), longest) << "trial " << trial;
+  }
 }
 
 }  // namespace

@@ -1,13 +1,16 @@
 #include "kaboum/geometry/bounding_mesh.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <vector>
 
 #include "kaboum/core/error.hpp"
 #include "kaboum/geometry/bounded_contraction.hpp"
+#include "kaboum/geometry/separation_certificate.hpp"
 #include "kaboum/geometry/triangle_bvh.hpp"
 #include "kaboum/geometry/triangle_grid.hpp"
 
@@ -17,13 +20,14 @@ namespace {
 constexpr std::uint32_t kNone = 0xffffffffu;
 
 // A candidate contraction of edge (a, b) to `position`. It is current while the versions of both
-// vertices match; `fanA/fanB` tell whether a fresher entry for the edge has been queued since.
+// vertices match; their fan versions tell whether a fresher entry for the edge has been queued
+// since. Versions only grow (by at most one per contraction), so each pair is kept as its sum,
+// which is unchanged exactly when both are: 48 bytes per heap entry.
 struct Candidate {
   double cost;
   Vec3 position;
   std::uint32_t a, b;
-  std::uint32_t versionA, versionB;
-  std::uint32_t fanA, fanB;
+  std::uint32_t versions, fanVersions;
   bool operator>(const Candidate& o) const { return cost > o.cost; }
 };
 
@@ -45,6 +49,12 @@ class BoundingMeshSimplifier {
   void forEachTriangle(std::uint32_t v, F&& f);
   void gatherFan(std::uint32_t v, std::vector<std::uint32_t>& fan);
   void gatherNeighbours(std::uint32_t v, std::vector<std::uint32_t>& out);
+  std::uint32_t versionsOf(std::uint32_t a, std::uint32_t b) const {
+    return version_[a] + version_[b];
+  }
+  std::uint32_t fanVersionsOf(std::uint32_t a, std::uint32_t b) const {
+    return fanVersion_[a] + fanVersion_[b];
+  }
   bool contains(std::uint32_t t, std::uint32_t v) const {
     return triangles_[t][0] == v || triangles_[t][1] == v || triangles_[t][2] == v;
   }
@@ -70,8 +80,9 @@ class BoundingMeshSimplifier {
   BoundingMeshOptions options_;
   std::vector<Vec3> positions_;
   std::vector<Triangle> triangles_;
-  std::vector<Vec3> normals_;    // unit normal per triangle (zero when degenerate)
-  std::vector<double> offsets_;  // normal · point on the triangle
+  std::vector<Vec3> normals_;        // unit normal per triangle (zero when degenerate)
+  std::vector<double> offsets_;      // normal · point on the triangle
+  std::vector<float> crossLengths_;  // |(p1 - p0) × (p2 - p0)|, for the guard's certificate
   std::vector<std::uint8_t> triangleAlive_;
   std::vector<std::uint32_t> firstCorner_, nextCorner_;  // per-vertex linked list of corners 3t+k
   std::vector<std::uint32_t> triangleCount_;
@@ -91,9 +102,15 @@ class BoundingMeshSimplifier {
   std::vector<Candidate> parked_;  // rejected candidates, retried once their neighbourhood changes
   // Scratch, reused by every call so the main loop does not allocate once warmed up.
   std::vector<std::uint32_t> fanA_, fanB_, neighbours_;
-  std::vector<std::array<Vec3, 3>> newCorners_;
-  std::vector<Triangle> newIds_;
-  std::vector<Box3> newBoxes_;
+  struct NewTriangle {  // a triangle of the fan a contraction would create
+    Triangle ids;
+    std::array<Vec3, 3> corners;
+    Vec3 unitNormal;
+    double crossLength, sizeSquared;
+    Box3 box;
+  };
+  std::vector<NewTriangle> newTriangles_;
+  std::vector<PlanedTriangle> newPlaned_;  // views of newTriangles_ for certainlyApart
   std::vector<std::uint32_t> nearby_;
   std::vector<HalfSpace> halfSpaces_;
   BoundingMeshStats stats_;
@@ -222,6 +239,8 @@ void BoundingMeshSimplifier::updatePlane(std::uint32_t t) {
   const double longest =
       std::max({(p1 - p0).squaredNorm(), (p2 - p1).squaredNorm(), (p0 - p2).squaredNorm()});
   const double length = cross.norm();
+  crossLengths_[t] =
+      static_cast<float>(std::min<double>(length, std::numeric_limits<float>::max()));
   if (length <= 1e-12 * longest || length == 0.0) {
     normals_[t] = Vec3::Zero();
     offsets_[t] = 0.0;
@@ -250,7 +269,7 @@ void BoundingMeshSimplifier::initQuadrics() {
 
 void BoundingMeshSimplifier::addHalfSpace(std::uint32_t t, const Vec3& origin) {
   const Vec3& n = normals_[t];
-  if (n == Vec3::Zero()) return;  // a degenerate triangle has no plane to stay above
+  if (n.x() == 0.0 && n.y() == 0.0 && n.z() == 0.0) return;  // degenerate: no plane to stay above
   const double sign = options_.side == BoundSide::Outer ? 1.0 : -1.0;
   halfSpaces_.push_back({sign * n, sign * (offsets_[t] - n.dot(origin))});
 }
@@ -281,10 +300,8 @@ bool BoundingMeshSimplifier::evaluateGathered(std::uint32_t a, std::uint32_t b, 
          origin + point.position,
          a,
          b,
-         version_[a],
-         version_[b],
-         fanVersion_[a],
-         fanVersion_[b]};
+         versionsOf(a, b),
+         fanVersionsOf(a, b)};
   return true;
 }
 
@@ -308,7 +325,7 @@ BoundingMeshSimplifier::Outcome BoundingMeshSimplifier::contract(const Candidate
   const std::uint32_t a = c.a, b = c.b;
   gatherFan(a, fanA_);
   gatherFan(b, fanB_);
-  const bool changed = version_[a] != c.versionA || version_[b] != c.versionB;
+  const bool changed = versionsOf(a, b) != c.versions;
   if (changed && !stillAboveFanPlanes(c)) return Outcome::Stale;
 
   // Topology: exactly two triangles on the edge, and the link condition (the only common
@@ -427,56 +444,72 @@ bool BoundingMeshSimplifier::stillAboveFanPlanes(const Candidate& c) const {
 
 // The new fan may not cross any other triangle of the mesh nor itself: this keeps outer results
 // free of folds (which parity-based inside tests misread) and inner results inside the original.
+// Each pair whose boxes overlap is first given the cheap certificate certainlyApart (cached unit
+// normals and twice-areas); only the pairs it cannot clear reach the exact predicate, so the
+// verdict is the predicate's.
 bool BoundingMeshSimplifier::newFanCrossesMesh(const Candidate& c) {
   const std::uint32_t a = c.a, b = c.b;
   ++stamp_;
   const std::uint32_t exclude = stamp_;
-  newCorners_.clear();
-  newIds_.clear();
+  newTriangles_.clear();
+  Box3 fanBox{Eigen::Vector3f::Constant(std::numeric_limits<float>::infinity()),
+              Eigen::Vector3f::Constant(-std::numeric_limits<float>::infinity())};
   const auto addNew = [&](std::uint32_t t) {
     triangleMark_[t] = exclude;
     if (contains(t, a) && contains(t, b)) return;
-    Triangle ids = triangles_[t];
-    std::array<Vec3, 3> corners;
+    NewTriangle& n = newTriangles_.emplace_back();
+    n.ids = triangles_[t];
     for (int k = 0; k < 3; ++k) {
-      if (ids[k] == b) ids[k] = a;
-      corners[k] = ids[k] == a ? c.position : positions_[ids[k]];
+      if (n.ids[k] == b) n.ids[k] = a;
+      n.corners[k] = n.ids[k] == a ? c.position : positions_[n.ids[k]];
     }
-    newIds_.push_back(ids);
-    newCorners_.push_back(corners);
+    const Vec3 cross = (n.corners[1] - n.corners[0]).cross(n.corners[2] - n.corners[0]);
+    n.crossLength = cross.norm();  // > 0: keepsShape refused degenerate new triangles
+    n.unitNormal = cross / n.crossLength;
+    n.box = triangleBox(n.corners[0], n.corners[1], n.corners[2]);
+    n.sizeSquared = n.box.diagonalSquared();
+    fanBox = {fanBox.lo.cwiseMin(n.box.lo), fanBox.hi.cwiseMax(n.box.hi)};
   };
   for (std::uint32_t t : fanA_) addNew(t);
   for (std::uint32_t t : fanB_) addNew(t);
+  newPlaned_.clear();
+  for (const NewTriangle& n : newTriangles_) {
+    newPlaned_.push_back({{&n.corners[0], &n.corners[1], &n.corners[2]},
+                          n.ids,
+                          n.unitNormal,
+                          n.crossLength,
+                          n.sizeSquared});
+  }
 
   // One grid query for the whole fan; then each nearby triangle is tested against the new
   // triangles whose boxes it overlaps.
-  Box3 fanBox{Vec3::Constant(std::numeric_limits<double>::infinity()),
-              Vec3::Constant(-std::numeric_limits<double>::infinity())};
-  newBoxes_.clear();
-  for (const auto& corners : newCorners_) {
-    newBoxes_.push_back(triangleBox(corners[0], corners[1], corners[2]));
-    fanBox = {fanBox.lo.cwiseMin(newBoxes_.back().lo), fanBox.hi.cwiseMax(newBoxes_.back().hi)};
-  }
   nearby_.clear();
   grid_->forEachNear(fanBox, [&](std::uint32_t u) {
     if (triangleMark_[u] == exclude) return;
     triangleMark_[u] = exclude;  // seen
     if (triangleAlive_[u] && fanBox.overlaps(boxes_[u])) nearby_.push_back(u);
   });
-  for (std::size_t i = 0; i < newIds_.size(); ++i) {
-    for (std::size_t j = i + 1; j < newIds_.size(); ++j) {
-      if (meshTrianglesIntersect(newCorners_[i], newIds_[i], newCorners_[j], newIds_[j]))
+  for (std::size_t i = 0; i < newTriangles_.size(); ++i) {
+    for (std::size_t j = i + 1; j < newTriangles_.size(); ++j) {
+      if (!certainlyApart(newPlaned_[i], newPlaned_[j]) &&
+          meshTrianglesIntersect(newTriangles_[i].corners, newTriangles_[i].ids,
+                                 newTriangles_[j].corners, newTriangles_[j].ids)) {
         return true;
+      }
     }
   }
   for (std::uint32_t u : nearby_) {
     const Triangle& ids = triangles_[u];
-    const std::array<Vec3, 3> corners{positions_[ids[0]], positions_[ids[1]], positions_[ids[2]]};
-    for (std::size_t i = 0; i < newIds_.size(); ++i) {
-      if (newBoxes_[i].overlaps(boxes_[u]) &&
-          meshTrianglesIntersect(newCorners_[i], newIds_[i], corners, ids)) {
-        return true;
-      }
+    const PlanedTriangle old{{&positions_[ids[0]], &positions_[ids[1]], &positions_[ids[2]]},
+                             ids,
+                             normals_[u],
+                             crossLengths_[u],
+                             boxes_[u].diagonalSquared()};
+    for (std::size_t i = 0; i < newTriangles_.size(); ++i) {
+      const NewTriangle& n = newTriangles_[i];
+      if (!n.box.overlaps(boxes_[u]) || certainlyApart(newPlaned_[i], old)) continue;
+      const std::array<Vec3, 3> corners{positions_[ids[0]], positions_[ids[1]], positions_[ids[2]]};
+      if (meshTrianglesIntersect(n.corners, n.ids, corners, ids)) return true;
     }
   }
   return false;
@@ -496,8 +529,7 @@ void BoundingMeshSimplifier::buildGrid(double cellSize) {
 // contraction queues fresh candidates for the new vertex's edges) and dominate peak memory.
 void BoundingMeshSimplifier::purgeHeap() {
   std::erase_if(heap_, [&](const Candidate& c) {
-    return !vertexAlive_[c.a] || !vertexAlive_[c.b] || fanVersion_[c.a] != c.fanA ||
-           fanVersion_[c.b] != c.fanB;
+    return !vertexAlive_[c.a] || !vertexAlive_[c.b] || fanVersionsOf(c.a, c.b) != c.fanVersions;
   });
   std::make_heap(heap_.begin(), heap_.end(), std::greater<>{});
 }
@@ -507,7 +539,7 @@ bool BoundingMeshSimplifier::revisitParked() {
   std::size_t kept = 0;
   for (const Candidate& c : parked_) {
     if (!vertexAlive_[c.a] || !vertexAlive_[c.b]) continue;
-    if (version_[c.a] == c.versionA && version_[c.b] == c.versionB) {
+    if (versionsOf(c.a, c.b) == c.versions) {
       parked_[kept++] = c;  // nothing changed around it: still invalid
       continue;
     }
@@ -550,6 +582,7 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
   boxes_.resize(triangles_.size());
   normals_.resize(triangles_.size());
   offsets_.resize(triangles_.size());
+  crossLengths_.resize(triangles_.size());
 
   buildAdjacency();
   std::vector<std::pair<std::uint32_t, std::uint32_t>> interiorEdges;
@@ -608,7 +641,7 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
     const Candidate c = heap_.back();
     heap_.pop_back();
     if (!vertexAlive_[c.a] || !vertexAlive_[c.b]) continue;
-    if (fanVersion_[c.a] != c.fanA || fanVersion_[c.b] != c.fanB) continue;  // superseded
+    if (fanVersionsOf(c.a, c.b) != c.fanVersions) continue;  // superseded
     if (c.cost > maxCost) {
       parked_.push_back(c);
       continue;
@@ -626,7 +659,7 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
         }
         break;
       case Outcome::Stale:
-        queue(c.a, c.b);
+        queueGathered(c.a, c.b);  // contract() left the fans of a and b in fanA_ and fanB_
         break;
       case Outcome::Topology:
         ++stats_.rejectedTopology;

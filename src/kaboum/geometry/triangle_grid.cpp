@@ -1,11 +1,36 @@
 #include "kaboum/geometry/triangle_grid.hpp"
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
+#include <limits>
 
 namespace kaboum {
+namespace {
+
+constexpr double kFloatMax = std::numeric_limits<float>::max();
+// Two units in the last place, relative: a float moved by this much passes every double that
+// rounded to it.
+constexpr float kTwoUlps = 2.4e-7f;
+
+// A float not above x.
+float floatBelow(double x) {
+  const auto f = static_cast<float>(std::clamp(x, -kFloatMax, kFloatMax));
+  return f - (std::abs(f) * kTwoUlps + std::numeric_limits<float>::min());
+}
+
+// A float not below x.
+float floatAbove(double x) {
+  const auto f = static_cast<float>(std::clamp(x, -kFloatMax, kFloatMax));
+  return f + (std::abs(f) * kTwoUlps + std::numeric_limits<float>::min());
+}
+
+}  // namespace
 
 Box3 triangleBox(const Vec3& a, const Vec3& b, const Vec3& c) {
-  return {a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c)};
+  const Vec3 lo = a.cwiseMin(b).cwiseMin(c), hi = a.cwiseMax(b).cwiseMax(c);
+  return {{floatBelow(lo.x()), floatBelow(lo.y()), floatBelow(lo.z())},
+          {floatAbove(hi.x()), floatAbove(hi.y()), floatAbove(hi.z())}};
 }
 
 TriangleGrid::TriangleGrid(double cellSize, std::size_t expectedTriangles)

@@ -9,13 +9,20 @@
 
 namespace kaboum {
 
+// An axis-aligned box in single precision, rounded outward so it contains the exact box: half the
+// memory of a double box, and overlap tests stay conservative.
 struct Box3 {
-  Vec3 lo, hi;
+  Eigen::Vector3f lo, hi;
   [[nodiscard]] bool overlaps(const Box3& o) const {
     return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all();
   }
+  // The diagonal squared: at least the longest edge squared of a triangle inside the box.
+  [[nodiscard]] double diagonalSquared() const {
+    return (hi.cast<double>() - lo.cast<double>()).squaredNorm();
+  }
 };
 
+// The box of triangle (a, b, c), rounded outward.
 Box3 triangleBox(const Vec3& a, const Vec3& b, const Vec3& c);
 
 class TriangleGrid {
@@ -45,8 +52,8 @@ class TriangleGrid {
   struct Entry {
     std::uint32_t triangle, next;
   };
-  [[nodiscard]] Eigen::Array3i cellOf(const Vec3& p) const {
-    return (p.array() / cellSize_).floor().cast<int>();
+  [[nodiscard]] Eigen::Array3i cellOf(const Eigen::Vector3f& p) const {
+    return (p.cast<double>().array() / cellSize_).floor().cast<int>();
   }
   template <class F>
   void forEachCell(const Box3& box, F&& f) const {
