@@ -72,7 +72,7 @@ class Solid {
       const Vec3& p = samples[i];
       if (worst > 0.0 && surfaceWithin(p, worst)) continue;  // cannot beat the worst so far
       const double d = bvh_.closest(p).distance;
-      if (d > worst && d > tolerance_ && !bvh_.contains(p)) {
+      if (d > worst && !bvh_.contains(p)) {
         worst = d;
         where = p;
         if (worst > ceiling) break;
@@ -928,7 +928,8 @@ Decomposition decomposeBounding(const TriangleMesh& mesh, const DecompositionOpt
     const double budget = kSimplifyShare * stats.epsilon;
     const TriangleBvh surface(cell.hull.mesh);
     const auto [bounded, boundedGrowth] = outerBoundingHull(cell.hull, surface, budget);
-    auto [hull, growth] = FacetDropping(bounded, boundedGrowth, surface, budget).run();
+    // Facet dropping stays within the first stage's growth: the error estimate does not grow.
+    auto [hull, growth] = FacetDropping(bounded, boundedGrowth, surface, boundedGrowth).run();
     worstGrowth = std::max(worstGrowth, growth);
     stats.totalVertices += hull.mesh.vertexCount();
     result.pieces.push_back({std::move(hull.mesh), std::move(hull.planes)});
