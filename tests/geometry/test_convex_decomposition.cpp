@@ -123,46 +123,6 @@ TEST(ConvexDecomposition, ConvexInputIsOnePieceWithFewerVerticesWithinEpsilon) {
   EXPECT_LE(quality.approximationToOriginal.max, result.stats.epsilon);
 }
 
-// Regular `sides`-gon prism around the z axis, circumradius 1, z from -1 to 1 (convex, closed).
-TriangleMesh makeRegularPrism(int sides) {
-  TriangleMesh prism;
-  for (int k = 0; k < sides; ++k) {
-    const double angle = 2.0 * M_PI * k / sides;
-    prism.vertices.emplace_back(std::cos(angle), std::sin(angle), -1.0);
-    prism.vertices.emplace_back(std::cos(angle), std::sin(angle), 1.0);
-  }
-  const auto n = static_cast<std::uint32_t>(sides);
-  for (std::uint32_t k = 0; k < n; ++k) {
-    const std::uint32_t a = 2 * k, b = 2 * k + 1, c = 2 * ((k + 1) % n), d = c + 1;
-    prism.triangles.push_back({a, c, d});
-    prism.triangles.push_back({a, d, b});
-    if (k > 0 && k + 1 < n) {
-      prism.triangles.push_back({0, c, a});
-      prism.triangles.push_back({1, b, d});
-    }
-  }
-  return prism;
-}
-
-// Step 3 on a convex input: the single piece contains it, and as both are convex the largest
-// distance from the piece to the input is attained at a piece vertex: measured exactly, it stays
-// within ε. A 128-gon prism at 1% needs about 21 sides (circumscribed polygon within 0.35 ε):
-// the piece keeps at most half of the input's vertices.
-TEST(ConvexDecomposition, ConvexPieceLosesFacetsWithinEpsilonExactly) {
-  const TriangleMesh prism = makeRegularPrism(128);
-  DecompositionOptions options;
-  options.epsilonPercent = 1.0;
-  const Decomposition result = decomposeBounding(prism, options);
-  expectBoundingDecomposition(prism, result, 1);
-  const ConvexPiece& piece = result.pieces.front();
-  EXPECT_LE(piece.vertices().size(), prism.vertices.size() / 2);
-  const TriangleBvh surface(prism);
-  for (const Vec3& v : piece.vertices()) {
-    EXPECT_LE(surface.closest(v).distance, result.stats.epsilon);
-  }
-  for (const Vec3& v : prism.vertices) EXPECT_TRUE(piece.contains(v, tolerance(prism)));
-}
-
 TEST(ConvexDecomposition, TorusSolidIsContainedAndItsHoleIsCarvedOut) {
   const TriangleMesh torus = makeTorus(1.0, 0.3, 32, 12);
   DecompositionOptions options;

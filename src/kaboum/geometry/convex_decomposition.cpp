@@ -53,51 +53,28 @@ double meshVolume(const TriangleMesh& mesh) {
 // The solid enclosed by the closed bound: inside tests and distances to its surface.
 class Solid {
  public:
-  // `surface` must outlive the solid.
-  Solid(const TriangleMesh& surface, double tolerance)
-      : surface_(surface), bvh_(surface), tolerance_(tolerance) {}
+  Solid(const TriangleMesh& surface, double tolerance) : bvh_(surface), tolerance_(tolerance) {}
 
   // Inside, or on the surface up to the tolerance (a corner there is kept, which is harmless).
   [[nodiscard]] bool contains(const Vec3& p) const {
     return bvh_.closest(p).distance <= tolerance_ || bvh_.contains(p);
   }
   [[nodiscard]] Vec3 closestPoint(const Vec3& p) const { return bvh_.closest(p).point; }
-  // Largest distance to the solid (0 for points inside) over every `stride`-th sample, and where
-  // it occurs; stops as soon as it exceeds `ceiling` (the result is then a lower bound).
-  [[nodiscard]] std::pair<double, Vec3> largestDistance(std::span<const Vec3> samples,
-                                                        std::size_t stride, double ceiling) const {
+  // Largest distance to the solid over `samples` (0 for samples inside), and where it occurs.
+  [[nodiscard]] std::pair<double, Vec3> largestDistance(const std::vector<Vec3>& samples) const {
     double worst = 0.0;
     Vec3 where = samples.empty() ? Vec3::Zero() : samples.front();
-    for (std::size_t i = 0; i < samples.size(); i += stride) {
-      const Vec3& p = samples[i];
-      if (worst > 0.0 && surfaceWithin(p, worst)) continue;  // cannot beat the worst so far
+    for (const Vec3& p : samples) {
       const double d = bvh_.closest(p).distance;
       if (d > worst && !bvh_.contains(p)) {
         worst = d;
         where = p;
-        if (worst > ceiling) break;
       }
     }
     return {worst, where};
   }
 
  private:
-  // Some point of the surface lies within `radius` of p: cheaper than the closest point, as any
-  // triangle close enough ends the search.
-  [[nodiscard]] bool surfaceWithin(const Vec3& p, double radius) const {
-    bool found = false;
-    const Vec3 reach = Vec3::Constant(radius);
-    bvh_.forEachTriangleOverlapping(p - reach, p + reach, [&](std::uint32_t t) {
-      const Triangle& tri = surface_.triangles[t];
-      const Vec3 c = closestPointOnTriangle(p, surface_.vertices[tri[0]], surface_.vertices[tri[1]],
-                                            surface_.vertices[tri[2]]);
-      found = (c - p).squaredNorm() <= radius * radius;
-      return !found;
-    });
-    return found;
-  }
-
-  const TriangleMesh& surface_;
   TriangleBvh bvh_;
   double tolerance_;
 };
@@ -112,9 +89,7 @@ struct Cell {
   std::vector<Vec3> corners;               // cell corners inside the solid
   ConvexHull hull;
   double hullVolume = 0.0;
-  std::vector<Vec3> samples;    // the hull's concavity samples, drawn once (measureConcavity)
-  double concavity = 0.0;       // largest sampled distance from the hull to the solid ...
-  bool concavityExact = false;  // ... over all samples; otherwise a lower bound of it
+  double concavity = 0.0;  // largest sampled distance from the hull to the solid
   Vec3 worstPoint = Vec3::Zero();
   int stalls = 0;  // splits in a row, up to this cell, that left the concavity nearly unchanged
 };
@@ -187,13 +162,18 @@ void clipPoints(const Cell& from, const HullPlane& plane, double tolerance, Cell
   to.points.erase(std::unique(to.points.begin(), to.points.end()), to.points.end());
 }
 
-// The corners both children of a cut gain: where `cut` meets two of the parent's `walls` inside
-// the parent cell, those that lie in the solid. The walls include the bound's enlarged bounding
-// box, so every cell is bounded.
-std::vector<Vec3> cutCorners(const std::vector<HullPlane>& walls, const HullPlane& cut,
-                             const Solid& solid, double tolerance) {
+// The corners of the child cell `walls` (the parent's walls and the cut, last) that lie in the
+// solid: the parent's inside corners on the kept side, and the new corners where the cut meets
+// two other walls. The walls include the bound's enlarged bounding box, so every cell is bounded.
+std::vector<Vec3> childCorners(const std::vector<Vec3>& parentCorners,
+                               const std::vector<HullPlane>& walls, const Solid& solid,
+                               double tolerance) {
+  const HullPlane& cut = walls.back();
   std::vector<Vec3> corners;
-  const std::size_t n = walls.size();
+  for (const Vec3& c : parentCorners) {
+    if (cut.normal.dot(c) <= cut.offset + tolerance) corners.push_back(c);
+  }
+  const std::size_t n = walls.size() - 1;
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = i + 1; j < n; ++j) {
       Eigen::Matrix3d normals;
@@ -254,38 +234,20 @@ struct Context {
   std::uint64_t seed;
 };
 
-// Every kCoarseStride-th concavity sample gives a cheap lower bound of a piece's concavity; pieces
-// are compared on it first and measured on all samples only while they can still win.
-constexpr std::size_t kCoarseStride = 12;
-
-// The cell's concavity on its hull samples (drawn on first use, numbered by `drawn` so that the
-// result depends on the seed only): on every `stride`-th sample a lower bound, on all of them
-// (stride 1) the exact sampled value unless it exceeds `ceiling`, where measuring stops early.
-void measureConcavity(Cell& cell, const Context& context, std::uint64_t& drawn,
-                      std::size_t stride = 1,
-                      double ceiling = std::numeric_limits<double>::infinity()) {
-  if (cell.samples.empty()) {
-    cell.samples =
-        sampleSurface(cell.hull.mesh, context.samples, context.seed * 1000003u + drawn++);
-  }
-  std::tie(cell.concavity, cell.worstPoint) =
-      context.solid.largestDistance(cell.samples, stride, ceiling);
-  cell.concavityExact = stride == 1 && cell.concavity <= ceiling;
+void measureConcavity(Cell& cell, const Context& context, std::uint64_t salt) {
+  const std::vector<Vec3> samples =
+      sampleSurface(cell.hull.mesh, context.samples, context.seed * 1000003u + salt);
+  std::tie(cell.concavity, cell.worstPoint) = context.solid.largestDistance(samples);
 }
 
-// The part of `parent` on the side n.x <= d of `cut`, or nothing when it has no volume; `onCut`
-// are the cut's corners in the solid (cutCorners).
-std::optional<Cell> childCell(const Cell& parent, const HullPlane& cut,
-                              const std::vector<Vec3>& onCut, const Context& context) {
+// The part of `parent` on the side n.x <= d of `cut`, or nothing when it has no volume.
+std::optional<Cell> childCell(const Cell& parent, const HullPlane& cut, const Context& context) {
   Cell child;
   clipPoints(parent, cut, context.tolerance, child);
   if (child.points.empty()) return std::nullopt;
   child.walls = parent.walls;
   child.walls.push_back(cut);
-  for (const Vec3& c : parent.corners) {
-    if (cut.normal.dot(c) <= cut.offset + context.tolerance) child.corners.push_back(c);
-  }
-  child.corners.insert(child.corners.end(), onCut.begin(), onCut.end());
+  child.corners = childCorners(parent.corners, child.walls, context.solid, context.tolerance);
   if (!buildHull(child, context.snap)) return std::nullopt;
   return child;
 }
@@ -334,18 +296,16 @@ std::vector<Vec3> pocketNormals(const Cell& cell, const Solid& solid) {
 // measured and their polygons clipped. Candidates: axis-parallel and principal-axis planes at
 // evenly spaced positions and through the worst sample, and the pocket planes through it.
 std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& context,
-                                               std::uint64_t& drawn) {
+                                               std::uint64_t& measured) {
   struct Candidate {
     Cell below, above;
     bool throughWorst;  // the cut passes through the cell's worst concavity sample
   };
   std::vector<Candidate> candidates;
   const auto tryCut = [&](const Vec3& normal, double position, bool throughWorst) {
-    const HullPlane cut{normal, position};
-    const std::vector<Vec3> onCut = cutCorners(cell.walls, cut, context.solid, context.tolerance);
-    auto below = childCell(cell, cut, onCut, context);
+    auto below = childCell(cell, HullPlane{normal, position}, context);
     if (!below) return;
-    auto above = childCell(cell, HullPlane{-normal, -position}, onCut, context);
+    auto above = childCell(cell, HullPlane{-normal, -position}, context);
     if (!above) return;
     candidates.push_back({std::move(*below), std::move(*above), throughWorst});
   };
@@ -371,27 +331,13 @@ std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& 
   std::partial_sort(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(shortlist),
                     candidates.end(),
                     [&](const auto& a, const auto& b) { return volume(a) < volume(b); });
-  // Branch and bound on the coarse lower bounds: the measured candidates in the order of their
-  // bounds, stopping at the first bound that cannot beat the best exact value. The choice is the
-  // one measuring every candidate on all samples would make.
-  std::vector<std::pair<double, std::size_t>> order;
+  std::size_t best = 0;
+  double bestConcavity = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     Candidate& c = candidates[i];
     if (i >= shortlist && !c.throughWorst) continue;
-    measureConcavity(c.below, context, drawn, kCoarseStride);
-    measureConcavity(c.above, context, drawn, kCoarseStride);
-    order.emplace_back(std::max(c.below.concavity, c.above.concavity), i);
-  }
-  std::sort(order.begin(), order.end());
-  std::size_t best = 0;
-  double bestConcavity = std::numeric_limits<double>::infinity();
-  for (const auto& [bound, i] : order) {
-    if (bound >= bestConcavity) break;
-    Candidate& c = candidates[i];
-    measureConcavity(c.below, context, drawn, 1, bestConcavity);
-    if (!c.below.concavityExact) continue;
-    measureConcavity(c.above, context, drawn, 1, bestConcavity);
-    if (!c.above.concavityExact) continue;
+    measureConcavity(c.below, context, measured++);
+    measureConcavity(c.above, context, measured++);
     const double concavity = std::max(c.below.concavity, c.above.concavity);
     if (concavity < bestConcavity) {
       bestConcavity = concavity;
@@ -429,10 +375,9 @@ bool boxesTouch(const Cell& a, const Cell& b, double tolerance) {
 
 // Greedy merging of neighbouring pieces (touching bounding boxes), the pair whose merged piece
 // has the smallest concavity first: forced while there are more than `maxPieces`, afterwards only
-// while that concavity stays within `budget`. Merged pieces are priced by their coarse lower bound
-// and measured on all samples only when they come first. Returns the number of merges.
+// while that concavity stays within `budget`. Returns the number of merges.
 std::size_t mergeNeighbours(std::vector<Cell>& cells, std::size_t maxPieces, double budget,
-                            const Context& context, double tolerance, std::uint64_t& drawn) {
+                            const Context& context, double tolerance, std::uint64_t& measured) {
   const std::size_t n = cells.size();
   std::vector<bool> alive(n, true);
   std::vector<std::optional<Cell>> pairs(n * n);  // [i * n + j], i < j: the merged piece
@@ -441,7 +386,7 @@ std::size_t mergeNeighbours(std::vector<Cell>& cells, std::size_t maxPieces, dou
     pair.reset();
     if (!boxesTouch(cells[i], cells[j], tolerance)) return;
     pair = mergedCell(cells[i], cells[j], context.snap);
-    if (pair) measureConcavity(*pair, context, drawn, kCoarseStride);
+    if (pair) measureConcavity(*pair, context, measured++);
   };
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = i + 1; j < n; ++j) price(i, j);
@@ -455,10 +400,6 @@ std::size_t mergeNeighbours(std::vector<Cell>& cells, std::size_t maxPieces, dou
       }
     }
     if (best == pairs.size()) break;
-    if (!pairs[best]->concavityExact) {  // a lower bound first: measure it, then look again
-      measureConcavity(*pairs[best], context, drawn);
-      continue;
-    }
     if (count <= maxPieces && pairs[best]->concavity > budget) break;
     const std::size_t i = best / n, j = best % n;
     cells[i] = std::move(*pairs[best]);
@@ -480,16 +421,32 @@ std::size_t mergeNeighbours(std::vector<Cell>& cells, std::size_t maxPieces, dou
   return merges;
 }
 
-// §4.4.2 step 3, first stage: the convex hull of an outer bounding mesh of the piece P (the
-// bounding mesh algorithm moves vertices outward, which suits round parts: it keeps about half the
-// vertices facet dropping keeps on a doubly curved surface). It contains P and is convex; the
-// distance to P is a convex function, so its largest distance to P is attained at its vertices
-// and is measured exactly (`surface`: P's surface). The quadric-error limit of the bounding mesh
-// algorithm only estimates that distance, so it is searched: halved from 8·budget until the result
-// is within `budget`, then bisected towards the failing limit; the result with the fewest vertices
-// within `budget` is kept, P itself if there is none.
-std::pair<ConvexHull, double> outerBoundingHull(const ConvexHull& piece, const TriangleBvh& surface,
-                                                double budget) {
+// Largest distance from the points to the convex piece (0 inside), exact.
+double largestDistanceToConvex(const std::vector<Vec3>& points, const ConvexHull& piece) {
+  double worst = 0.0;
+  for (const Vec3& p : points) {
+    const bool inside =
+        std::all_of(piece.planes.begin(), piece.planes.end(),
+                    [&](const HullPlane& h) { return h.normal.dot(p) <= h.offset; });
+    if (inside) continue;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Triangle& t : piece.mesh.triangles) {
+      const Vec3 c = closestPointOnTriangle(p, piece.mesh.vertices[t[0]], piece.mesh.vertices[t[1]],
+                                            piece.mesh.vertices[t[2]]);
+      nearest = std::min(nearest, (c - p).norm());
+    }
+    worst = std::max(worst, nearest);
+  }
+  return worst;
+}
+
+// §4.4.2 step 3: the convex hull of an outer bounding mesh of `piece`. It contains the piece and is
+// convex; as the distance to a convex set is a convex function, its largest distance to the piece
+// is attained at its vertices, which is measured exactly. The quadric-error limit of the bounding
+// mesh algorithm only estimates that distance, so it is searched: halved from 8·budget until the
+// result is within `budget`, then bisected towards the failing limit; the result with the fewest
+// vertices within `budget` is kept, the piece itself if there is none.
+std::pair<ConvexHull, double> simplifyPiece(const ConvexHull& piece, double budget) {
   std::pair<ConvexHull, double> best{piece, 0.0};
   const auto attempt = [&](double limit) {
     BoundingMeshOptions options;
@@ -501,13 +458,7 @@ std::pair<ConvexHull, double> outerBoundingHull(const ConvexHull& piece, const T
     } catch (const InputError&) {
       return false;
     }
-    double growth = 0.0;
-    for (const Vec3& v : simplified.mesh.vertices) {
-      if (!std::all_of(piece.planes.begin(), piece.planes.end(),
-                       [&](const HullPlane& h) { return h.normal.dot(v) <= h.offset; })) {
-        growth = std::max(growth, surface.closest(v).distance);
-      }
-    }
+    const double growth = largestDistanceToConvex(simplified.mesh.vertices, piece);
     if (growth > budget) return false;
     if (simplified.mesh.vertexCount() < best.first.mesh.vertexCount()) {
       best = {std::move(simplified), growth};
@@ -528,218 +479,6 @@ std::pair<ConvexHull, double> outerBoundingHull(const ConvexHull& piece, const T
   }
   return best;
 }
-
-// §4.4.2 step 3, second stage: drop facet planes of a convex S ⊇ P (the first stage's result),
-// which keeps the intersection of the remaining half-spaces convex and containing S, as long as it
-// stays within `budget` of the piece P (the flat facets the first stage leaves). The
-// thesis runs the bounding mesh algorithm with E_triangles, which keeps a convex mesh convex
-// (Appendix A.2); dropping planes is the exact counterpart on the plane side: dropping plane i adds
-// the *cap* { n_i.x >= d_i } ∩ (the other half-spaces), and since the distance to P is a convex
-// function, the growth is the largest distance of a cap vertex to P, computed exactly. Planes are
-// dropped greedily, the smallest growth first. A cap only grows as other planes are dropped, so a
-// plane once over the budget stays kept, and a cap needs recomputing only when the dropped plane
-// bounded it.
-class FacetDropping {
- public:
-  // `start` ⊇ P, `startGrowth` its largest distance to P; `surface`: P's surface.
-  FacetDropping(const ConvexHull& start, double startGrowth, const TriangleBvh& surface,
-                double budget)
-      : start_(start), surface_(surface), startGrowth_(startGrowth), budget_(budget) {
-    const double diagonal = boundingBoxDiagonal(start.mesh);
-    tolerance_ = 1e-9 * diagonal;
-    // Every plane supports P exactly (qhull fits merged facets' planes).
-    for (HullPlane plane : start.planes) {
-      plane.offset = -std::numeric_limits<double>::infinity();
-      for (const Vec3& v : start.mesh.vertices)
-        plane.offset = std::max(plane.offset, plane.normal.dot(v));
-      planes_.push_back(plane);
-    }
-    // A box that no cap within the budget reaches: a cap vertex on it is over the budget.
-    Eigen::AlignedBox3d box;
-    for (const Vec3& v : start.mesh.vertices) box.extend(v);
-    const double margin = 2.0 * budget + tolerance_;
-    for (int axis = 0; axis < 3; ++axis) {
-      box_.push_back({Vec3::Unit(axis), box.max()[axis] + margin});
-      box_.push_back({-Vec3::Unit(axis), margin - box.min()[axis]});
-    }
-    vertices_ = start.mesh.vertices;
-  }
-
-  // The simplified piece and its exact growth; the piece itself when nothing could be dropped.
-  std::pair<ConvexHull, double> run() {
-    const std::size_t n = planes_.size();
-    kept_.assign(n, true);
-    frozen_.assign(n, false);
-    caps_.resize(n);
-    for (std::size_t i = 0; i < n; ++i) score(i);
-    while (true) {
-      std::size_t best = n;
-      for (std::size_t i = 0; i < n; ++i) {
-        if (kept_[i] && !frozen_[i] && (best == n || caps_[i].growth < caps_[best].growth)) {
-          best = i;
-        }
-      }
-      if (best == n) break;
-      drop(best);
-      for (std::size_t k = 0; k < n; ++k) {
-        const auto& bounding = caps_[k].boundingPlanes;
-        if (kept_[k] && !frozen_[k] &&
-            std::find(bounding.begin(), bounding.end(), best) != bounding.end()) {
-          score(k);
-        }
-      }
-    }
-    return finish();
-  }
-
- private:
-  // A cap: its vertices, whether three of the piece's planes meet at each (not only auxiliary
-  // ones), the piece's planes through its vertices, and its largest distance to P.
-  struct Cap {
-    std::vector<Vec3> vertices;
-    std::vector<bool> corner;
-    std::vector<std::size_t> boundingPlanes;
-    double growth = 0.0;
-  };
-
-  [[nodiscard]] bool onPlane(const HullPlane& h, const Vec3& v) const {
-    return std::abs(h.normal.dot(v) - h.offset) <= tolerance_;
-  }
-
-  // The vertices of the bounded region { n.x <= d } of `region` (ids: index into planes_, or n for
-  // the flipped dropped plane and the box), by intersecting every three planes.
-  void regionVertices(const std::vector<HullPlane>& region, const std::vector<std::size_t>& ids,
-                      Cap& cap) const {
-    cap.vertices.clear();
-    cap.corner.clear();
-    const std::size_t m = region.size();
-    for (std::size_t a = 0; a < m; ++a) {
-      for (std::size_t b = a + 1; b < m; ++b) {
-        const Vec3 ab = region[a].normal.cross(region[b].normal);
-        for (std::size_t c = b + 1; c < m; ++c) {
-          const double det = ab.dot(region[c].normal);
-          if (std::abs(det) < 1e-10) continue;
-          const Vec3 v = (region[a].offset * region[b].normal.cross(region[c].normal) +
-                          region[b].offset * region[c].normal.cross(region[a].normal) +
-                          region[c].offset * ab) /
-                         det;
-          const bool feasible = std::all_of(region.begin(), region.end(), [&](const HullPlane& h) {
-            return h.normal.dot(v) <= h.offset + tolerance_;
-          });
-          if (!feasible) continue;
-          const bool corner =
-              ids[a] < planes_.size() && ids[b] < planes_.size() && ids[c] < planes_.size();
-          std::size_t k = 0;
-          while (k < cap.vertices.size() && (cap.vertices[k] - v).norm() > tolerance_) ++k;
-          if (k == cap.vertices.size()) {
-            cap.vertices.push_back(v);
-            cap.corner.push_back(corner);
-          } else if (corner) {
-            cap.corner[k] = true;
-          }
-        }
-      }
-    }
-  }
-
-  // The cap of dropping plane i: start from the planes through facet i's corners, add the planes
-  // its vertices violate until there are none.
-  void score(std::size_t i) {
-    const std::size_t n = planes_.size();
-    const HullPlane& dropped = planes_[i];
-    std::vector<HullPlane> region{HullPlane{-dropped.normal, -dropped.offset}};
-    std::vector<std::size_t> ids{n};
-    for (const HullPlane& wall : box_) {
-      region.push_back(wall);
-      ids.push_back(n);
-    }
-    const auto add = [&](std::size_t j) {
-      if (std::find(ids.begin(), ids.end(), j) != ids.end()) return;
-      region.push_back(planes_[j]);
-      ids.push_back(j);
-    };
-    for (const Vec3& v : vertices_) {
-      if (!onPlane(dropped, v)) continue;
-      for (std::size_t j = 0; j < n; ++j) {
-        if (j != i && kept_[j] && onPlane(planes_[j], v)) add(j);
-      }
-    }
-    Cap& cap = caps_[i];
-    while (true) {
-      regionVertices(region, ids, cap);
-      const std::size_t before = region.size();
-      for (const Vec3& v : cap.vertices) {
-        for (std::size_t j = 0; j < n; ++j) {
-          if (j != i && kept_[j] && planes_[j].normal.dot(v) > planes_[j].offset + tolerance_) {
-            add(j);
-          }
-        }
-      }
-      if (region.size() == before) break;
-    }
-    // No vertices: a numerical failure; keep the plane.
-    cap.growth = cap.vertices.empty() ? std::numeric_limits<double>::infinity() : 0.0;
-    cap.boundingPlanes.clear();
-    for (std::size_t k = 0; k < cap.vertices.size(); ++k) {
-      const Vec3& v = cap.vertices[k];
-      const bool onBox = std::any_of(box_.begin(), box_.end(),
-                                     [&](const HullPlane& wall) { return onPlane(wall, v); });
-      if (onBox) cap.growth = std::numeric_limits<double>::infinity();
-      if (dropped.normal.dot(v) > dropped.offset + tolerance_) {
-        cap.growth = std::max(cap.growth, surface_.closest(v).distance);
-      }
-      for (std::size_t r = 1 + box_.size(); r < region.size(); ++r) {
-        if (onPlane(region[r], v)) cap.boundingPlanes.push_back(ids[r]);
-      }
-    }
-    if (cap.growth > budget_) frozen_[i] = true;
-  }
-
-  // Drops plane i: facet i's corners are replaced by the cap's corners.
-  void drop(std::size_t i) {
-    const HullPlane& dropped = planes_[i];
-    kept_[i] = false;
-    std::erase_if(vertices_, [&](const Vec3& v) { return onPlane(dropped, v); });
-    const Cap& cap = caps_[i];
-    for (std::size_t k = 0; k < cap.vertices.size(); ++k) {
-      if (cap.corner[k]) vertices_.push_back(cap.vertices[k]);
-    }
-  }
-
-  // The hull of the remaining corners, checked: it contains S (so P) and is within the budget of
-  // P (exactly, at its vertices); otherwise, or when it has no fewer vertices, S itself.
-  std::pair<ConvexHull, double> finish() const {
-    const std::pair<ConvexHull, double> unchanged{start_, startGrowth_};
-    if (vertices_.size() >= start_.mesh.vertexCount()) return unchanged;
-    ConvexHull simplified;
-    try {
-      simplified = convexHull(vertices_, "piece");
-    } catch (const InputError&) {
-      return unchanged;
-    }
-    for (const HullPlane& h : simplified.planes) {
-      for (const Vec3& v : start_.mesh.vertices) {
-        if (h.normal.dot(v) > h.offset + 10.0 * tolerance_) return unchanged;
-      }
-    }
-    double growth = startGrowth_;
-    for (const Vec3& v : simplified.mesh.vertices) {
-      growth = std::max(growth, surface_.closest(v).distance);
-    }
-    if (growth > budget_ || simplified.mesh.vertexCount() >= start_.mesh.vertexCount()) {
-      return unchanged;
-    }
-    return {std::move(simplified), growth};
-  }
-
-  const ConvexHull& start_;
-  const TriangleBvh& surface_;  // P's surface: exact distances of points outside P
-  double startGrowth_, budget_, tolerance_ = 0.0;
-  std::vector<HullPlane> planes_, box_;
-  std::vector<Vec3> vertices_;  // corners of the current intersection
-  std::vector<bool> kept_, frozen_;
-  std::vector<Cap> caps_;
-};
 
 // The edge-connected components of `mesh` as separate meshes, each with a flag: closed (every
 // edge has exactly two triangles).
@@ -884,8 +623,8 @@ Decomposition decomposeBounding(const TriangleMesh& mesh, const DecompositionOpt
     root.walls.push_back({-Vec3::Unit(axis), -lo[axis]});
   }
   if (!buildHull(root, context.snap)) throw InputError("mesh encloses no volume");
-  std::uint64_t drawn = 0;  // sample sets drawn so far
-  measureConcavity(root, context, drawn);
+  std::uint64_t measured = 0;
+  measureConcavity(root, context, measured++);
 
   // Splitting goes past the piece limit; merging brings the count back (better cuts than a
   // top-down split stopped early).
@@ -899,7 +638,7 @@ Decomposition decomposeBounding(const TriangleMesh& mesh, const DecompositionOpt
     if (leaves.size() + open.size() >= splitLimit) break;
     Cell cell = std::move(*worst);
     open.erase(worst);
-    auto split = bestSplit(cell, context, drawn);
+    auto split = bestSplit(cell, context, measured);
     if (!split) {
       leaves.push_back(std::move(cell));
       continue;
@@ -912,7 +651,7 @@ Decomposition decomposeBounding(const TriangleMesh& mesh, const DecompositionOpt
   }
   for (Cell& cell : open) leaves.push_back(std::move(cell));
   stats.merges = mergeNeighbours(leaves, options.maxPieces, concavityBudget, context,
-                                 1e-6 * stats.diagonal, drawn);
+                                 1e-6 * stats.diagonal, measured);
   const bool limited = std::any_of(leaves.begin(), leaves.end(),
                                    [&](const Cell& c) { return c.concavity > concavityBudget; });
   const bool atLimit = stats.splits + 1 >= splitLimit || leaves.size() >= options.maxPieces;
@@ -925,11 +664,7 @@ Decomposition decomposeBounding(const TriangleMesh& mesh, const DecompositionOpt
   for (const Cell& cell : leaves) {
     stats.hullVertices += cell.hull.mesh.vertexCount();
     worstConcavity = std::max(worstConcavity, cell.concavity);
-    const double budget = kSimplifyShare * stats.epsilon;
-    const TriangleBvh surface(cell.hull.mesh);
-    const auto [bounded, boundedGrowth] = outerBoundingHull(cell.hull, surface, budget);
-    // Facet dropping stays within the first stage's growth: the error estimate does not grow.
-    auto [hull, growth] = FacetDropping(bounded, boundedGrowth, surface, boundedGrowth).run();
+    auto [hull, growth] = simplifyPiece(cell.hull, kSimplifyShare * stats.epsilon);
     worstGrowth = std::max(worstGrowth, growth);
     stats.totalVertices += hull.mesh.vertexCount();
     result.pieces.push_back({std::move(hull.mesh), std::move(hull.planes)});

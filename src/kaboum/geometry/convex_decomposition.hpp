@@ -63,9 +63,8 @@ struct Decomposition {
 // mesh algorithm, per component; open or self-intersecting components are left as they are), step 2
 // splits the bound hierarchically by planes, each cell C giving the piece conv((bound surface ∩ C)
 // ∪ (corners of C inside the bound)), which contains the bound's solid inside C, so the union
-// contains the whole solid (docs/decomposition.md has the argument), and step 3 drops facet planes
-// of every piece (the intersection of the others contains it and stays convex) while the exact
-// growth stays within its share of ε. The distance budget is split between
+// contains the whole solid (docs/decomposition.md has the argument), and step 3 replaces every
+// piece by the convex hull of an outer bounding mesh of it. The distance budget is split between
 // the steps; ε is met up to the sampling of the concavity measure unless `maxPieces` stops the
 // splitting first. Deterministic for a given seed. Throws InputError for an empty mesh, non-finite
 // coordinates, a mesh that cannot be oriented, or one with no volume.
