@@ -66,6 +66,9 @@ void BM_DecomposeLink(benchmark::State& state, const Link* link) {
   state.counters["vertices"] = static_cast<double>(result.stats.totalVertices);
   state.counters["vertices_min"] = static_cast<double>(minVertices);
   state.counters["vertices_max"] = static_cast<double>(maxVertices);
+  state.counters["vertices_mean"] =
+      static_cast<double>(result.stats.totalVertices) / static_cast<double>(result.pieces.size());
+  state.counters["estimated_error_pct"] = result.stats.estimatedError * percent;
   state.counters["orig_to_approx_max_pct"] = quality.originalToApproximation.max * percent;
   state.counters["orig_to_approx_mean_pct"] = quality.originalToApproximation.mean * percent;
   state.counters["approx_to_orig_max_pct"] = quality.approximationToOriginal.max * percent;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <numeric>
 #include <optional>
 #include <thread>
 
@@ -678,9 +679,16 @@ std::vector<Decomposition> decomposeBoundingEach(std::span<const TriangleMesh> m
                                                  unsigned threads) {
   std::vector<Decomposition> results(meshes.size());
   std::vector<std::exception_ptr> errors(meshes.size());
+  // Largest meshes first, so that no thread is left with a large one at the end.
+  std::vector<std::size_t> order(meshes.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return meshes[a].triangleCount() > meshes[b].triangleCount();
+  });
   std::atomic<std::size_t> next{0};
   const auto work = [&] {
-    for (std::size_t i = next++; i < meshes.size(); i = next++) {
+    for (std::size_t k = next++; k < meshes.size(); k = next++) {
+      const std::size_t i = order[k];
       try {
         results[i] = decomposeBounding(meshes[i], options);
       } catch (...) {

@@ -71,8 +71,8 @@ struct Decomposition {
 Decomposition decomposeBounding(const TriangleMesh& mesh, const DecompositionOptions& options);
 
 // decomposeBounding for every mesh (e.g. every collision mesh of a robot's links), run on
-// `threads` threads; the results do not depend on the thread count. An InputError names the
-// failing mesh by its index.
+// `threads` threads, the largest meshes first; the results do not depend on the thread count. An
+// InputError names the failing mesh by its index.
 std::vector<Decomposition> decomposeBoundingEach(std::span<const TriangleMesh> meshes,
                                                  const DecompositionOptions& options,
                                                  unsigned threads = 2);
