@@ -175,8 +175,8 @@ nlohmann::json narrowPhaseDecisions(const RobotCollisionModel& robot, const Coll
           for (std::size_t q = 0; q < scene.body(o).pieceCount(); ++q) {
             if (!obstacleBoxes[o][q].overlaps(box)) continue;
             ++boxesOverlap;
-            const collision::TransformedSupport obstacle(scene.body(o).piece(q),
-                                                         partPose.inverse() * scene.pose(o));
+            const collision::TransformedSupport obstacle(
+                scene.body(o).piece(q), collision::inFrameOf(partPose, scene.pose(o)));
             const PairVerdict spheres = collision::sphereVerdict(body.piece(p), obstacle);
             if (spheres == PairVerdict::separated) {
               ++spheresApart;

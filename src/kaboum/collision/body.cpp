@@ -40,10 +40,7 @@ bool pieceWithinBody(const CollisionBody& body, const ConvexPolytope& piece,
 bool bodiesCollide(const CollisionBody& a, const Pose& poseA, const CollisionBody& b,
                    const Pose& poseB, double margin) {
   // b in a's frame: a's pieces need no transform at all.
-  const Eigen::Matrix3d toA = poseA.linear().transpose();
-  Pose relative = Pose::Identity();
-  relative.linear() = toA * poseB.linear();
-  relative.translation() = toA * (poseB.translation() - poseA.translation());
+  const Pose relative = inFrameOf(poseA, poseB);
   const Vec3 centreB = relative * b.bounds().centre;
   if (!spheresWithin(a.bounds().centre, a.bounds().radius, centreB, b.bounds().radius, margin)) {
     return false;

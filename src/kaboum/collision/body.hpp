@@ -48,6 +48,15 @@ class CollisionBody {
 
 using BodyPtr = std::shared_ptr<const CollisionBody>;
 
+// `pose` expressed in the frame `frame` (frame⁻¹ · pose), with the rotation inverted by transpose.
+inline Pose inFrameOf(const Pose& frame, const Pose& pose) {
+  const Eigen::Matrix3d toFrame = frame.linear().transpose();
+  Pose relative = Pose::Identity();
+  relative.linear() = toFrame * pose.linear();
+  relative.translation() = toFrame * (pose.translation() - frame.translation());
+  return relative;
+}
+
 // True when `piece` (with its culling `bounds`), placed in the body's frame by `inBody`, comes
 // within `margin` of some piece of `body`: its box there queries the body's piece tree, and the
 // narrow phase (sphere pre-tests, then portal/GJK) decides the pieces found. Allocates nothing.

@@ -74,10 +74,8 @@ std::optional<std::size_t> CollisionScene::firstCollision(const CollisionBody& b
                            bounds.radius, margin)) {
           return true;
         }
-        Pose inBody = Pose::Identity();
-        inBody.linear() = toBody * object.pose.linear();
-        inBody.translation() = toBody * (object.pose.translation() - pose.translation());
-        if (!pieceWithinBody(body, object.body->piece(slot.piece), bounds, inBody, margin)) {
+        if (!pieceWithinBody(body, object.body->piece(slot.piece), bounds,
+                             inFrameOf(pose, object.pose), margin)) {
           return true;
         }
         hit = slot.object;
