@@ -57,8 +57,9 @@ class CollisionScene {
     return hit;
   }
 
-  // The first object with a piece within `margin` of `body` at `pose` (model-model collision,
-  // Definition 1 (1)), skipping `ignore`.
+  // An object with a piece within `margin` of `body` at `pose` (model-model collision,
+  // Definition 1 (1)), skipping `ignore`: the first the scene tree visits, so the same for the
+  // same scene and query, but not necessarily the lowest index when several collide.
   [[nodiscard]] std::optional<std::size_t> firstCollision(
       const CollisionBody& body, const Pose& pose, double margin,
       std::optional<std::size_t> ignore = {}) const;
