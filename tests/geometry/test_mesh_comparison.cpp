@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include "kaboum/core/error.hpp"
@@ -117,6 +118,25 @@ TEST(MeasureHausdorff, OfAShiftedMeshIsTheShift) {
   const HausdorffReport report = measureHausdorff(sphere, shifted, kRandomSamples, kSeed);
   EXPECT_NEAR(report.originalToResult.max, 0.1, 1e-12);
   EXPECT_NEAR(report.resultToOriginal.max, 0.1, 1e-12);
+}
+
+// One meter, several results: each report is the shift's exact distance, and measureWithin
+// answers only when both one-sided maxima stay within the limit.
+TEST(HausdorffMeter, MeasuresEachResultAgainstTheSameOriginal) {
+  const TriangleMesh sphere = makeIcosphere(3);
+  const HausdorffMeter meter(sphere, kRandomSamples, kSeed);
+  for (const double shift : {0.3, 0.05, 0.2}) {
+    const TriangleMesh shifted = transformMesh(sphere, 1.0, Vec3::Zero(), Vec3(0, shift, 0));
+    const HausdorffReport report = meter.measure(shifted);
+    EXPECT_NEAR(report.originalToResult.max, shift, 1e-12);
+    EXPECT_NEAR(report.resultToOriginal.max, shift, 1e-12);
+    EXPECT_FALSE(meter.measureWithin(shifted, 0.99 * shift).has_value());
+    const std::optional<HausdorffReport> within = meter.measureWithin(shifted, 1.01 * shift);
+    ASSERT_TRUE(within.has_value());
+    EXPECT_EQ(within->originalToResult.mean, report.originalToResult.mean);
+    EXPECT_EQ(within->resultToOriginal.mean, report.resultToOriginal.mean);
+    EXPECT_EQ(within->samples, report.samples);
+  }
 }
 
 TEST(MeasureHausdorff, RejectsEmptyMeshesByRole) {

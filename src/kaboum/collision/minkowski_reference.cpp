@@ -6,35 +6,9 @@
 #include <vector>
 
 #include "kaboum/geometry/convex_hull.hpp"
+#include "kaboum/geometry/triangle_bvh.hpp"
 
 namespace kaboum::collision {
-
-Vec3 closestPointOnTriangle(const Vec3& point, const Vec3& p0, const Vec3& p1, const Vec3& p2) {
-  const Vec3 ab = p1 - p0;
-  const Vec3 ac = p2 - p0;
-  const Vec3 ap = point - p0;
-  const double d1 = ab.dot(ap);
-  const double d2 = ac.dot(ap);
-  if (d1 <= 0.0 && d2 <= 0.0) return p0;
-  const Vec3 bp = point - p1;
-  const double d3 = ab.dot(bp);
-  const double d4 = ac.dot(bp);
-  if (d3 >= 0.0 && d4 <= d3) return p1;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return p0 + (d1 / (d1 - d3)) * ab;
-  const Vec3 cp = point - p2;
-  const double d5 = ab.dot(cp);
-  const double d6 = ac.dot(cp);
-  if (d6 >= 0.0 && d5 <= d6) return p2;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return p0 + (d2 / (d2 - d6)) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
-    return p1 + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (p2 - p1);
-  }
-  const double denominator = 1.0 / (va + vb + vc);
-  return p0 + ab * (vb * denominator) + ac * (vc * denominator);
-}
 
 MinkowskiReference minkowskiReference(std::span<const Vec3> a, std::span<const Vec3> b) {
   std::vector<Vec3> difference;

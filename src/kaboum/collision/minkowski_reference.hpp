@@ -21,8 +21,4 @@ struct MinkowskiReference {
 // difference set has no volume.
 MinkowskiReference minkowskiReference(std::span<const Vec3> a, std::span<const Vec3> b);
 
-// The point of triangle (p0, p1, p2) closest to `point` (Ericson, Real-Time Collision Detection
-// §5.1.5).
-Vec3 closestPointOnTriangle(const Vec3& point, const Vec3& p0, const Vec3& p1, const Vec3& p2);
-
 }  // namespace kaboum::collision

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "kaboum/core/error.hpp"
@@ -703,28 +704,23 @@ BoundingMeshResult simplifyBoundingWithin(const TriangleMesh& input, BoundingMes
                                           double epsilon, std::size_t samples,
                                           HausdorffReport& measured, int maxRuns) {
   int runs = 0;
-  const auto attempt = [&](double scale, HausdorffReport& report) {
+  const HausdorffMeter meter(input, samples, 1);
+  const auto attempt = [&](double scale) {
     ++runs;
     options.maxError = scale * epsilon;
-    BoundingMeshResult result = simplifyBounding(input, options);
-    report = measureHausdorff(input, result.mesh, samples, 1);
-    return result;
-  };
-  const auto within = [&](const HausdorffReport& r) {
-    return std::max(r.originalToResult.max, r.resultToOriginal.max) <= epsilon;
+    return simplifyBounding(input, options);
   };
   BoundingMeshResult best;
   bool haveBest = false;
   double fits = 0.0, fails = 0.0;  // largest scale known to fit, smallest known to fail (0: none)
   double scale = 1.0;
   while (runs < maxRuns) {
-    HausdorffReport report;
-    BoundingMeshResult result = attempt(scale, report);
-    const bool ok = within(report);
-    if (ok) {
+    BoundingMeshResult result = attempt(scale);
+    const std::optional<HausdorffReport> report = meter.measureWithin(result.mesh, epsilon);
+    if (report) {
       fits = scale;
       best = std::move(result);
-      measured = report;
+      measured = *report;
       haveBest = true;
       if (best.stats.stopReason == "vertex target reached") break;  // cannot go further
     } else {
@@ -739,7 +735,10 @@ BoundingMeshResult simplifyBoundingWithin(const TriangleMesh& input, BoundingMes
       scale = std::sqrt(fits * fails);
     }
   }
-  if (!haveBest) best = attempt(0.0, measured);  // nothing fitted: no contraction at all
+  if (!haveBest) {  // nothing fitted: no contraction at all
+    best = attempt(0.0);
+    measured = meter.measure(best.mesh);
+  }
   if (best.stats.stopReason != "vertex target reached") {
     best.stats.stopReason = "largest simplification found within the distance limit";
   }

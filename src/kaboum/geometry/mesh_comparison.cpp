@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
 #include <limits>
 #include <thread>
 #include <vector>
@@ -65,11 +66,19 @@ std::size_t countUnbalancedEdges(const TriangleMesh& mesh) {
   return unbalanced;
 }
 
-DistanceStats distanceStats(const std::vector<Vec3>& samples, const TriangleBvh& target) {
+// Distances of `samples` to `target`, or nullopt as soon as one exceeds `limit`.
+std::optional<DistanceStats> distanceStats(const std::vector<Vec3>& samples,
+                                           const TriangleBvh& target,
+                                           double limit = std::numeric_limits<double>::infinity()) {
   std::vector<double> distances(samples.size());
-  forEachIndex(samples.size(),
-               [&](std::size_t i) { distances[i] = target.closest(samples[i]).distance; });
-  if (distances.empty()) return {};
+  std::atomic<bool> exceeded{false};
+  forEachIndex(samples.size(), [&](std::size_t i) {
+    if (exceeded.load(std::memory_order_relaxed)) return;
+    distances[i] = target.closest(samples[i]).distance;
+    if (distances[i] > limit) exceeded.store(true, std::memory_order_relaxed);
+  });
+  if (exceeded) return std::nullopt;
+  if (distances.empty()) return DistanceStats{};
   DistanceStats stats{std::numeric_limits<double>::infinity(), 0.0, 0.0};
   double sum = 0.0;
   for (const double d : distances) {
@@ -106,18 +115,49 @@ std::size_t countSelfIntersections(const TriangleMesh& mesh, const TriangleBvh& 
 
 }  // namespace
 
+struct HausdorffMeter::Original {
+  Original(const TriangleMesh& original, std::size_t randomSamples, std::uint64_t seed)
+      : bvh(buildBvh(original, "original")),
+        samples(sampleSurface(original, randomSamples, seed)),
+        diagonal(boundingBoxDiagonal(original)) {}
+  TriangleBvh bvh;
+  std::vector<Vec3> samples;
+  double diagonal;
+};
+
+HausdorffMeter::HausdorffMeter(const TriangleMesh& original, std::size_t randomSamples,
+                               std::uint64_t seed)
+    : original_(std::make_unique<const Original>(original, randomSamples, seed)),
+      randomSamples_(randomSamples),
+      seed_(seed) {}
+
+HausdorffMeter::~HausdorffMeter() = default;
+
+HausdorffReport HausdorffMeter::measure(const TriangleMesh& result) const {
+  return *measureWithin(result, std::numeric_limits<double>::infinity());
+}
+
+std::optional<HausdorffReport> HausdorffMeter::measureWithin(const TriangleMesh& result,
+                                                             double limit) const {
+  const TriangleBvh resultBvh = buildBvh(result, "result");
+  const std::optional<DistanceStats> originalToResult =
+      distanceStats(original_->samples, resultBvh, limit);
+  if (!originalToResult) return std::nullopt;
+  const std::vector<Vec3> resultSamples = sampleSurface(result, randomSamples_, seed_);
+  const std::optional<DistanceStats> resultToOriginal =
+      distanceStats(resultSamples, original_->bvh, limit);
+  if (!resultToOriginal) return std::nullopt;
+  HausdorffReport report;
+  report.originalToResult = *originalToResult;
+  report.resultToOriginal = *resultToOriginal;
+  report.diagonal = original_->diagonal;
+  report.samples = original_->samples.size() + resultSamples.size();
+  return report;
+}
+
 HausdorffReport measureHausdorff(const TriangleMesh& original, const TriangleMesh& result,
                                  std::size_t randomSamples, std::uint64_t seed) {
-  const TriangleBvh originalBvh = buildBvh(original, "original");
-  const TriangleBvh resultBvh = buildBvh(result, "result");
-  const std::vector<Vec3> originalSamples = sampleSurface(original, randomSamples, seed);
-  const std::vector<Vec3> resultSamples = sampleSurface(result, randomSamples, seed);
-  HausdorffReport report;
-  report.originalToResult = distanceStats(originalSamples, resultBvh);
-  report.resultToOriginal = distanceStats(resultSamples, originalBvh);
-  report.diagonal = boundingBoxDiagonal(original);
-  report.samples = originalSamples.size() + resultSamples.size();
-  return report;
+  return HausdorffMeter(original, randomSamples, seed).measure(result);
 }
 
 ContainmentReport verifyContainment(const TriangleMesh& original, const TriangleMesh& result,

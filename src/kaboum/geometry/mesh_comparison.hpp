@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <string>
 
 #include "kaboum/geometry/bound_side.hpp"
@@ -24,6 +26,30 @@ struct HausdorffReport {
 // Throws InputError when either mesh has no triangles (or bad indices or coordinates).
 HausdorffReport measureHausdorff(const TriangleMesh& original, const TriangleMesh& result,
                                  std::size_t randomSamples, std::uint64_t seed);
+
+// measureHausdorff against one original, many results (a search over simplifications): the
+// original's BVH and samples are built once.
+class HausdorffMeter {
+ public:
+  // Throws like measureHausdorff for a bad original.
+  HausdorffMeter(const TriangleMesh& original, std::size_t randomSamples, std::uint64_t seed);
+  ~HausdorffMeter();
+  HausdorffMeter(const HausdorffMeter&) = delete;
+  HausdorffMeter& operator=(const HausdorffMeter&) = delete;
+
+  // Equal to measureHausdorff(original, result, randomSamples, seed).
+  [[nodiscard]] HausdorffReport measure(const TriangleMesh& result) const;
+  // measure(result) when both one-sided distances stay within `limit`; nullopt as soon as one
+  // sample is farther (the rest is not measured).
+  [[nodiscard]] std::optional<HausdorffReport> measureWithin(const TriangleMesh& result,
+                                                             double limit) const;
+
+ private:
+  struct Original;
+  std::unique_ptr<const Original> original_;
+  std::size_t randomSamples_;
+  std::uint64_t seed_;
+};
 
 struct ContainmentReport {
   // False when a mesh the check needs closed is not (the original for either side, the result for
