@@ -50,31 +50,66 @@ double meshVolume(const TriangleMesh& mesh) {
   return sixVolume / 6.0;
 }
 
+// The largest distance from a piece's hull samples to the solid (0 when every sample is inside)
+// and the first sample where it occurs; `complete` is false when the measurement stopped early
+// because the distance reached the caller's limit (then `distance` is only a lower bound).
+struct Farthest {
+  double distance = 0.0;
+  Vec3 where = Vec3::Zero();
+  bool complete = true;
+};
+
 // The solid enclosed by the closed bound: inside tests and distances to its surface.
 class Solid {
  public:
-  Solid(const TriangleMesh& surface, double tolerance) : bvh_(surface), tolerance_(tolerance) {}
+  Solid(const TriangleMesh& surface, double tolerance)
+      : surface_(surface), bvh_(surface), tolerance_(tolerance) {}
 
   // Inside, or on the surface up to the tolerance (a corner there is kept, which is harmless).
   [[nodiscard]] bool contains(const Vec3& p) const {
     return bvh_.closest(p).distance <= tolerance_ || bvh_.contains(p);
   }
   [[nodiscard]] Vec3 closestPoint(const Vec3& p) const { return bvh_.closest(p).point; }
-  // Largest distance to the solid over `samples` (0 for samples inside), and where it occurs.
-  [[nodiscard]] std::pair<double, Vec3> largestDistance(const std::vector<Vec3>& samples) const {
-    double worst = 0.0;
-    Vec3 where = samples.empty() ? Vec3::Zero() : samples.front();
+
+  // Largest distance to the solid over `samples` (0 for samples inside), stopping as soon as it
+  // reaches `stopAt`. A sample only matters when it is farther than the largest distance so far,
+  // so most samples are settled by finding one triangle that close instead of the closest one;
+  // the result is bit for bit the one of a closest-point query per sample.
+  [[nodiscard]] Farthest largestDistance(const std::vector<Vec3>& samples, double stopAt) const {
+    Farthest result;
+    if (!samples.empty()) result.where = samples.front();
     for (const Vec3& p : samples) {
+      if (hasTriangleWithin(p, result.distance)) continue;
       const double d = bvh_.closest(p).distance;
-      if (d > worst && !bvh_.contains(p)) {
-        worst = d;
-        where = p;
+      if (d > result.distance && !bvh_.contains(p)) {
+        result.distance = d;
+        result.where = p;
+        if (result.distance >= stopAt) {
+          result.complete = false;
+          return result;
+        }
       }
     }
-    return {worst, where};
+    return result;
   }
 
  private:
+  // Some triangle is within `radius` of p, by the same arithmetic as TriangleBvh::closest (so
+  // this is false exactly when closest(p).distance > radius).
+  [[nodiscard]] bool hasTriangleWithin(const Vec3& p, double radius) const {
+    const Vec3 reach = Vec3::Constant(radius + tolerance_);
+    bool found = false;
+    bvh_.forEachTriangleOverlapping(p - reach, p + reach, [&](std::uint32_t t) {
+      const Triangle& tri = surface_.triangles[t];
+      const Vec3 c = closestPointOnTriangle(p, surface_.vertices[tri[0]], surface_.vertices[tri[1]],
+                                            surface_.vertices[tri[2]]);
+      found = std::sqrt((c - p).squaredNorm()) <= radius;
+      return !found;
+    });
+    return found;
+  }
+
+  const TriangleMesh& surface_;
   TriangleBvh bvh_;
   double tolerance_;
 };
@@ -234,10 +269,16 @@ struct Context {
   std::uint64_t seed;
 };
 
-void measureConcavity(Cell& cell, const Context& context, std::uint64_t salt) {
+// The piece's concavity on samples of its hull (`salt` picks the random ones). The measurement
+// stops once the concavity reaches `stopAt`; returns false then (the concavity is at least that).
+bool measureConcavity(Cell& cell, const Context& context, std::uint64_t salt,
+                      double stopAt = std::numeric_limits<double>::infinity()) {
   const std::vector<Vec3> samples =
       sampleSurface(cell.hull.mesh, context.samples, context.seed * 1000003u + salt);
-  std::tie(cell.concavity, cell.worstPoint) = context.solid.largestDistance(samples);
+  const Farthest farthest = context.solid.largestDistance(samples, stopAt);
+  cell.concavity = farthest.distance;
+  cell.worstPoint = farthest.where;
+  return farthest.complete;
 }
 
 // The part of `parent` on the side n.x <= d of `cut`, or nothing when it has no volume.
@@ -336,13 +377,15 @@ std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& 
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     Candidate& c = candidates[i];
     if (i >= shortlist && !c.throughWorst) continue;
-    measureConcavity(c.below, context, measured++);
-    measureConcavity(c.above, context, measured++);
-    const double concavity = std::max(c.below.concavity, c.above.concavity);
-    if (concavity < bestConcavity) {
-      bestConcavity = concavity;
-      best = i;
+    // A candidate loses as soon as one child reaches the best concavity so far.
+    const std::uint64_t salt = measured;
+    measured += 2;
+    if (!measureConcavity(c.below, context, salt, bestConcavity) ||
+        !measureConcavity(c.above, context, salt + 1, bestConcavity)) {
+      continue;
     }
+    bestConcavity = std::max(c.below.concavity, c.above.concavity);
+    best = i;
   }
   Candidate& chosen = candidates[best];
   clipPolygons(cell, chosen.below.walls.back(), context.tolerance, chosen.below);
@@ -375,39 +418,59 @@ bool boxesTouch(const Cell& a, const Cell& b, double tolerance) {
 
 // Greedy merging of neighbouring pieces (touching bounding boxes), the pair whose merged piece
 // has the smallest concavity first: forced while there are more than `maxPieces`, afterwards only
-// while that concavity stays within `budget`. Returns the number of merges.
+// while that concavity stays within `budget`. Returns the number of merges. Concavities are
+// measured lazily: a pair's measurement stops once it exceeds the best pair's, leaving a lower
+// bound that is completed only if it could still win (same choices as measuring every pair).
 std::size_t mergeNeighbours(std::vector<Cell>& cells, std::size_t maxPieces, double budget,
                             const Context& context, double tolerance, std::uint64_t& measured) {
+  struct Pair {
+    std::optional<Cell> merged;
+    std::uint64_t salt = 0;  // of the merged piece's concavity samples
+    bool exact = false;      // merged->concavity is measured, else a lower bound
+  };
   const std::size_t n = cells.size();
   std::vector<bool> alive(n, true);
-  std::vector<std::optional<Cell>> pairs(n * n);  // [i * n + j], i < j: the merged piece
+  std::vector<Pair> pairs(n * n);  // [i * n + j], i < j
   const auto price = [&](std::size_t i, std::size_t j) {
-    auto& pair = pairs[i * n + j];
-    pair.reset();
+    Pair& pair = pairs[i * n + j];
+    pair = Pair{};
     if (!boxesTouch(cells[i], cells[j], tolerance)) return;
-    pair = mergedCell(cells[i], cells[j], context.snap);
-    if (pair) measureConcavity(*pair, context, measured++);
+    pair.merged = mergedCell(cells[i], cells[j], context.snap);
+    if (pair.merged) pair.salt = measured++;
   };
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = i + 1; j < n; ++j) price(i, j);
   }
+  // The pair whose merged piece has the smallest concavity (the first of equals), or pairs.size().
+  const auto cheapest = [&] {
+    while (true) {
+      std::size_t best = pairs.size(), bound = pairs.size();
+      for (std::size_t k = 0; k < pairs.size(); ++k) {
+        if (!pairs[k].merged) continue;
+        const double concavity = pairs[k].merged->concavity;
+        std::size_t& current = pairs[k].exact ? best : bound;
+        if (current == pairs.size() || concavity < pairs[current].merged->concavity) current = k;
+      }
+      const double limit = best == pairs.size() ? std::numeric_limits<double>::infinity()
+                                                : pairs[best].merged->concavity;
+      if (bound == pairs.size() || pairs[bound].merged->concavity > limit) return best;
+      Pair& pair = pairs[bound];
+      pair.exact = measureConcavity(*pair.merged, context, pair.salt,
+                                    std::nextafter(limit, std::numeric_limits<double>::infinity()));
+    }
+  };
   std::size_t count = n, merges = 0;
   while (true) {
-    std::size_t best = pairs.size();
-    for (std::size_t k = 0; k < pairs.size(); ++k) {
-      if (pairs[k] && (best == pairs.size() || pairs[k]->concavity < pairs[best]->concavity)) {
-        best = k;
-      }
-    }
+    const std::size_t best = cheapest();
     if (best == pairs.size()) break;
-    if (count <= maxPieces && pairs[best]->concavity > budget) break;
+    if (count <= maxPieces && pairs[best].merged->concavity > budget) break;
     const std::size_t i = best / n, j = best % n;
-    cells[i] = std::move(*pairs[best]);
+    cells[i] = std::move(*pairs[best].merged);
     alive[j] = false;
     --count;
     ++merges;
     for (std::size_t k = 0; k < n; ++k) {
-      pairs[std::min(k, j) * n + std::max(k, j)].reset();
+      pairs[std::min(k, j) * n + std::max(k, j)] = Pair{};
       if (k != i && alive[k]) price(std::min(k, i), std::max(k, i));
     }
   }
