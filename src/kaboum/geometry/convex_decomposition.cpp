@@ -372,20 +372,39 @@ std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& 
   std::partial_sort(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(shortlist),
                     candidates.end(),
                     [&](const auto& a, const auto& b) { return volume(a) < volume(b); });
-  std::size_t best = 0;
-  double bestConcavity = std::numeric_limits<double>::infinity();
+  // The measured candidates (the shortlist and the cuts through the worst sample), each with the
+  // salt of its children's samples. They are measured least total volume first, which tends to
+  // set a low bar early so that the others stop sooner; the winner is the one whose larger child
+  // concavity is smallest, the first in candidate order among equals, whatever the order of
+  // measurement.
+  struct ToMeasure {
+    std::size_t index;
+    std::uint64_t salt;
+  };
+  std::vector<ToMeasure> toMeasure;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
-    Candidate& c = candidates[i];
-    if (i >= shortlist && !c.throughWorst) continue;
-    // A candidate loses as soon as one child reaches the best concavity so far.
-    const std::uint64_t salt = measured;
+    if (i >= shortlist && !candidates[i].throughWorst) continue;
+    toMeasure.push_back({i, measured});
     measured += 2;
-    if (!measureConcavity(c.below, context, salt, bestConcavity) ||
-        !measureConcavity(c.above, context, salt + 1, bestConcavity)) {
+  }
+  std::stable_sort(toMeasure.begin(), toMeasure.end(), [&](const auto& a, const auto& b) {
+    return volume(candidates[a.index]) < volume(candidates[b.index]);
+  });
+  std::size_t best = candidates.size();
+  double bestConcavity = std::numeric_limits<double>::infinity();
+  for (const ToMeasure& m : toMeasure) {
+    Candidate& c = candidates[m.index];
+    // A candidate loses as soon as one child reaches the best concavity so far (passes it, for a
+    // candidate earlier in candidate order, which wins a tie).
+    const double stopAt =
+        m.index < best ? std::nextafter(bestConcavity, std::numeric_limits<double>::infinity())
+                       : bestConcavity;
+    if (!measureConcavity(c.below, context, m.salt, stopAt) ||
+        !measureConcavity(c.above, context, m.salt + 1, stopAt)) {
       continue;
     }
     bestConcavity = std::max(c.below.concavity, c.above.concavity);
-    best = i;
+    best = m.index;
   }
   Candidate& chosen = candidates[best];
   clipPolygons(cell, chosen.below.walls.back(), context.tolerance, chosen.below);
