@@ -7,8 +7,11 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <exception>
+#include <functional>
 #include <limits>
+#include <mutex>
 #include <numeric>
 #include <optional>
 #include <thread>
@@ -261,7 +264,84 @@ bool buildHull(Cell& cell, double snap) {
   return false;
 }
 
+// Lets the workers of decomposeBoundingEach that have no mesh left help the others: a worker
+// hands out independent tasks (the candidate cuts of a split) and idle workers take some. Who
+// runs which task does not change any result.
+class WorkSharing {
+ public:
+  explicit WorkSharing(unsigned workers) : busy_(workers) {}
+
+  // Runs task(i) for every i < count, on this thread and on idle workers; returns when all are
+  // done (rethrowing the first exception of a task).
+  void run(std::size_t count, const std::function<void(std::size_t)>& task) {
+    Job job{&task, count, 0, 0, nullptr};
+    std::unique_lock lock(mutex_);
+    if (count == 0) return;
+    jobs_.push_back(&job);
+    changed_.notify_all();
+    while (job.next < job.count) execute(job, lock);
+    changed_.wait(lock, [&] { return job.running == 0; });
+    if (job.error) std::rethrow_exception(job.error);
+  }
+
+  // Called by a worker with no mesh left: runs other workers' tasks until no worker is busy.
+  void help() {
+    std::unique_lock lock(mutex_);
+    --busy_;
+    changed_.notify_all();
+    while (true) {
+      changed_.wait(lock, [&] { return busy_ == 0 || !jobs_.empty(); });
+      if (jobs_.empty()) return;
+      execute(*jobs_.front(), lock);
+    }
+  }
+
+ private:
+  struct Job {
+    const std::function<void(std::size_t)>* task;
+    std::size_t count;
+    std::size_t next = 0;     // the next task to hand out
+    std::size_t running = 0;  // tasks handed out and not finished
+    std::exception_ptr error;
+  };
+
+  // Takes the job's next task and runs it without the lock; a job whose last task is handed out
+  // leaves the list (its owner waits for the running ones).
+  void execute(Job& job, std::unique_lock<std::mutex>& lock) {
+    const std::size_t i = job.next++;
+    if (job.next == job.count) jobs_.erase(std::find(jobs_.begin(), jobs_.end(), &job));
+    ++job.running;
+    lock.unlock();
+    std::exception_ptr error;
+    try {
+      (*job.task)(i);
+    } catch (...) {
+      error = std::current_exception();
+    }
+    lock.lock();
+    if (error && !job.error) job.error = error;
+    --job.running;
+    changed_.notify_all();
+  }
+
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::vector<Job*> jobs_;  // jobs with tasks left to hand out
+  unsigned busy_;           // workers still decomposing a mesh
+};
+
+// Runs task(i) for every i < count, with idle workers' help when `sharing` is given.
+void runTasks(WorkSharing* sharing, std::size_t count,
+              const std::function<void(std::size_t)>& task) {
+  if (sharing != nullptr) {
+    sharing->run(count, task);
+    return;
+  }
+  for (std::size_t i = 0; i < count; ++i) task(i);
+}
+
 struct Context {
+  WorkSharing* sharing;  // nothing when decomposing one mesh alone
   const Solid& solid;
   double tolerance;  // geometric tolerance, a tiny fraction of the diagonal
   double snap;       // largest distance a hull may lose points by (see buildHull)
@@ -342,14 +422,12 @@ std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& 
     Cell below, above;
     bool throughWorst;  // the cut passes through the cell's worst concavity sample
   };
-  std::vector<Candidate> candidates;
-  const auto tryCut = [&](const Vec3& normal, double position, bool throughWorst) {
-    auto below = childCell(cell, HullPlane{normal, position}, context);
-    if (!below) return;
-    auto above = childCell(cell, HullPlane{-normal, -position}, context);
-    if (!above) return;
-    candidates.push_back({std::move(*below), std::move(*above), throughWorst});
+  struct Cut {
+    Vec3 normal;
+    double position;
+    bool throughWorst;
   };
+  std::vector<Cut> cuts;
   for (const Vec3& axis : cutAxes(cell)) {
     double lo = std::numeric_limits<double>::infinity();
     double hi = -lo;
@@ -358,13 +436,30 @@ std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& 
       hi = std::max(hi, axis.dot(v));
     }
     for (int k = 1; k <= kCutsPerAxis; ++k) {
-      tryCut(axis, lo + (hi - lo) * k / (kCutsPerAxis + 1), false);
+      cuts.push_back({axis, lo + (hi - lo) * k / (kCutsPerAxis + 1), false});
     }
     const double worst = axis.dot(cell.worstPoint);
-    if (worst > lo + 0.02 * (hi - lo) && worst < hi - 0.02 * (hi - lo)) tryCut(axis, worst, true);
+    if (worst > lo + 0.02 * (hi - lo) && worst < hi - 0.02 * (hi - lo)) {
+      cuts.push_back({axis, worst, true});
+    }
   }
   for (const Vec3& normal : pocketNormals(cell, context.solid)) {
-    tryCut(normal, normal.dot(cell.worstPoint), true);
+    cuts.push_back({normal, normal.dot(cell.worstPoint), true});
+  }
+  // The children of every cut (independent tasks, shared with idle workers); a cut that leaves
+  // one side without volume is no candidate.
+  std::vector<std::optional<Candidate>> children(cuts.size());
+  runTasks(context.sharing, cuts.size(), [&](std::size_t k) {
+    const Cut& cut = cuts[k];
+    auto below = childCell(cell, HullPlane{cut.normal, cut.position}, context);
+    if (!below) return;
+    auto above = childCell(cell, HullPlane{-cut.normal, -cut.position}, context);
+    if (!above) return;
+    children[k] = Candidate{std::move(*below), std::move(*above), cut.throughWorst};
+  });
+  std::vector<Candidate> candidates;
+  for (auto& c : children) {
+    if (c) candidates.push_back(std::move(*c));
   }
   if (candidates.empty()) return std::nullopt;
   const auto volume = [](const Candidate& c) { return c.below.hullVolume + c.above.hullVolume; };
@@ -638,7 +733,12 @@ bool ConvexPiece::contains(const Vec3& p, double tolerance) const {
                      [&](const HullPlane& h) { return h.normal.dot(p) <= h.offset + tolerance; });
 }
 
-Decomposition decomposeBounding(const TriangleMesh& mesh, const DecompositionOptions& options) {
+namespace {
+
+// decomposeBounding, with the candidate cuts' hulls shared with idle workers when `sharing`
+// is given.
+Decomposition decomposeSharing(const TriangleMesh& mesh, const DecompositionOptions& options,
+                               WorkSharing* sharing) {
   const auto start = std::chrono::steady_clock::now();
   if (std::isnan(options.epsilon) || options.epsilon < 0.0) {
     throw InputError("epsilon must be a positive distance");
@@ -687,8 +787,8 @@ Decomposition decomposeBounding(const TriangleMesh& mesh, const DecompositionOpt
 
   // Step 2: hierarchical plane splits, the worst concavity first.
   const Solid solid(bound, 1e-9 * stats.diagonal);
-  const Context context{solid, tolerance, 1e-8 * stats.diagonal, options.concavitySamples,
-                        options.seed};
+  const Context context{
+      sharing, solid, tolerance, 1e-8 * stats.diagonal, options.concavitySamples, options.seed};
   const double concavityBudget = kConcavityShare * stats.epsilon;
   Cell root;
   for (const Triangle& t : bound.triangles) {
@@ -756,6 +856,12 @@ Decomposition decomposeBounding(const TriangleMesh& mesh, const DecompositionOpt
   return result;
 }
 
+}  // namespace
+
+Decomposition decomposeBounding(const TriangleMesh& mesh, const DecompositionOptions& options) {
+  return decomposeSharing(mesh, options, nullptr);
+}
+
 std::vector<Decomposition> decomposeBoundingEach(std::span<const TriangleMesh> meshes,
                                                  const DecompositionOptions& options,
                                                  unsigned threads) {
@@ -768,19 +874,22 @@ std::vector<Decomposition> decomposeBoundingEach(std::span<const TriangleMesh> m
     return meshes[a].triangleCount() > meshes[b].triangleCount();
   });
   std::atomic<std::size_t> next{0};
+  const unsigned workers = std::max(threads, 1u);
+  WorkSharing sharing(workers);
   const auto work = [&] {
     for (std::size_t k = next++; k < meshes.size(); k = next++) {
       const std::size_t i = order[k];
       try {
-        results[i] = decomposeBounding(meshes[i], options);
+        results[i] = decomposeSharing(meshes[i], options, &sharing);
       } catch (...) {
         errors[i] = std::current_exception();
       }
     }
+    sharing.help();
   };
   {
     std::vector<std::jthread> helpers;
-    for (unsigned t = 1; t < std::max(threads, 1u); ++t) helpers.emplace_back(work);
+    for (unsigned t = 1; t < workers; ++t) helpers.emplace_back(work);
     work();
   }
   for (std::size_t i = 0; i < meshes.size(); ++i) {
