@@ -7,8 +7,11 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <exception>
+#include <functional>
 #include <limits>
+#include <mutex>
 #include <numeric>
 #include <optional>
 #include <thread>
@@ -50,31 +53,66 @@ double meshVolume(const TriangleMesh& mesh) {
   return sixVolume / 6.0;
 }
 
+// The largest distance from a piece's hull samples to the solid (0 when every sample is inside)
+// and the first sample where it occurs; `complete` is false when the measurement stopped early
+// because the distance reached the caller's limit (then `distance` is only a lower bound).
+struct Farthest {
+  double distance = 0.0;
+  Vec3 where = Vec3::Zero();
+  bool complete = true;
+};
+
 // The solid enclosed by the closed bound: inside tests and distances to its surface.
 class Solid {
  public:
-  Solid(const TriangleMesh& surface, double tolerance) : bvh_(surface), tolerance_(tolerance) {}
+  Solid(const TriangleMesh& surface, double tolerance)
+      : surface_(surface), bvh_(surface), tolerance_(tolerance) {}
 
   // Inside, or on the surface up to the tolerance (a corner there is kept, which is harmless).
   [[nodiscard]] bool contains(const Vec3& p) const {
     return bvh_.closest(p).distance <= tolerance_ || bvh_.contains(p);
   }
   [[nodiscard]] Vec3 closestPoint(const Vec3& p) const { return bvh_.closest(p).point; }
-  // Largest distance to the solid over `samples` (0 for samples inside), and where it occurs.
-  [[nodiscard]] std::pair<double, Vec3> largestDistance(const std::vector<Vec3>& samples) const {
-    double worst = 0.0;
-    Vec3 where = samples.empty() ? Vec3::Zero() : samples.front();
+
+  // Largest distance to the solid over `samples` (0 for samples inside), stopping as soon as it
+  // reaches `stopAt`. A sample only matters when it is farther than the largest distance so far,
+  // so most samples are settled by finding one triangle that close instead of the closest one;
+  // the result is bit for bit the one of a closest-point query per sample.
+  [[nodiscard]] Farthest largestDistance(const std::vector<Vec3>& samples, double stopAt) const {
+    Farthest result;
+    if (!samples.empty()) result.where = samples.front();
     for (const Vec3& p : samples) {
+      if (hasTriangleWithin(p, result.distance)) continue;
       const double d = bvh_.closest(p).distance;
-      if (d > worst && !bvh_.contains(p)) {
-        worst = d;
-        where = p;
+      if (d > result.distance && !bvh_.contains(p)) {
+        result.distance = d;
+        result.where = p;
+        if (result.distance >= stopAt) {
+          result.complete = false;
+          return result;
+        }
       }
     }
-    return {worst, where};
+    return result;
   }
 
  private:
+  // Some triangle is within `radius` of p, by the same arithmetic as TriangleBvh::closest (so
+  // this is false exactly when closest(p).distance > radius).
+  [[nodiscard]] bool hasTriangleWithin(const Vec3& p, double radius) const {
+    const Vec3 reach = Vec3::Constant(radius + tolerance_);
+    bool found = false;
+    bvh_.forEachTriangleOverlapping(p - reach, p + reach, [&](std::uint32_t t) {
+      const Triangle& tri = surface_.triangles[t];
+      const Vec3 c = closestPointOnTriangle(p, surface_.vertices[tri[0]], surface_.vertices[tri[1]],
+                                            surface_.vertices[tri[2]]);
+      found = std::sqrt((c - p).squaredNorm()) <= radius;
+      return !found;
+    });
+    return found;
+  }
+
+  const TriangleMesh& surface_;
   TriangleBvh bvh_;
   double tolerance_;
 };
@@ -226,7 +264,84 @@ bool buildHull(Cell& cell, double snap) {
   return false;
 }
 
+// Lets the workers of decomposeBoundingEach that have no mesh left help the others: a worker
+// hands out independent tasks (the candidate cuts of a split) and idle workers take some. Who
+// runs which task does not change any result.
+class WorkSharing {
+ public:
+  explicit WorkSharing(unsigned workers) : busy_(workers) {}
+
+  // Runs task(i) for every i < count, on this thread and on idle workers; returns when all are
+  // done (rethrowing the first exception of a task).
+  void run(std::size_t count, const std::function<void(std::size_t)>& task) {
+    Job job{&task, count, 0, 0, nullptr};
+    std::unique_lock lock(mutex_);
+    if (count == 0) return;
+    jobs_.push_back(&job);
+    changed_.notify_all();
+    while (job.next < job.count) execute(job, lock);
+    changed_.wait(lock, [&] { return job.running == 0; });
+    if (job.error) std::rethrow_exception(job.error);
+  }
+
+  // Called by a worker with no mesh left: runs other workers' tasks until no worker is busy.
+  void help() {
+    std::unique_lock lock(mutex_);
+    --busy_;
+    changed_.notify_all();
+    while (true) {
+      changed_.wait(lock, [&] { return busy_ == 0 || !jobs_.empty(); });
+      if (jobs_.empty()) return;
+      execute(*jobs_.front(), lock);
+    }
+  }
+
+ private:
+  struct Job {
+    const std::function<void(std::size_t)>* task;
+    std::size_t count;
+    std::size_t next = 0;     // the next task to hand out
+    std::size_t running = 0;  // tasks handed out and not finished
+    std::exception_ptr error;
+  };
+
+  // Takes the job's next task and runs it without the lock; a job whose last task is handed out
+  // leaves the list (its owner waits for the running ones).
+  void execute(Job& job, std::unique_lock<std::mutex>& lock) {
+    const std::size_t i = job.next++;
+    if (job.next == job.count) jobs_.erase(std::find(jobs_.begin(), jobs_.end(), &job));
+    ++job.running;
+    lock.unlock();
+    std::exception_ptr error;
+    try {
+      (*job.task)(i);
+    } catch (...) {
+      error = std::current_exception();
+    }
+    lock.lock();
+    if (error && !job.error) job.error = error;
+    --job.running;
+    changed_.notify_all();
+  }
+
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::vector<Job*> jobs_;  // jobs with tasks left to hand out
+  unsigned busy_;           // workers still decomposing a mesh
+};
+
+// Runs task(i) for every i < count, with idle workers' help when `sharing` is given.
+void runTasks(WorkSharing* sharing, std::size_t count,
+              const std::function<void(std::size_t)>& task) {
+  if (sharing != nullptr) {
+    sharing->run(count, task);
+    return;
+  }
+  for (std::size_t i = 0; i < count; ++i) task(i);
+}
+
 struct Context {
+  WorkSharing* sharing;  // nothing when decomposing one mesh alone
   const Solid& solid;
   double tolerance;  // geometric tolerance, a tiny fraction of the diagonal
   double snap;       // largest distance a hull may lose points by (see buildHull)
@@ -234,10 +349,16 @@ struct Context {
   std::uint64_t seed;
 };
 
-void measureConcavity(Cell& cell, const Context& context, std::uint64_t salt) {
+// The piece's concavity on samples of its hull (`salt` picks the random ones). The measurement
+// stops once the concavity reaches `stopAt`; returns false then (the concavity is at least that).
+bool measureConcavity(Cell& cell, const Context& context, std::uint64_t salt,
+                      double stopAt = std::numeric_limits<double>::infinity()) {
   const std::vector<Vec3> samples =
       sampleSurface(cell.hull.mesh, context.samples, context.seed * 1000003u + salt);
-  std::tie(cell.concavity, cell.worstPoint) = context.solid.largestDistance(samples);
+  const Farthest farthest = context.solid.largestDistance(samples, stopAt);
+  cell.concavity = farthest.distance;
+  cell.worstPoint = farthest.where;
+  return farthest.complete;
 }
 
 // The part of `parent` on the side n.x <= d of `cut`, or nothing when it has no volume.
@@ -301,14 +422,12 @@ std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& 
     Cell below, above;
     bool throughWorst;  // the cut passes through the cell's worst concavity sample
   };
-  std::vector<Candidate> candidates;
-  const auto tryCut = [&](const Vec3& normal, double position, bool throughWorst) {
-    auto below = childCell(cell, HullPlane{normal, position}, context);
-    if (!below) return;
-    auto above = childCell(cell, HullPlane{-normal, -position}, context);
-    if (!above) return;
-    candidates.push_back({std::move(*below), std::move(*above), throughWorst});
+  struct Cut {
+    Vec3 normal;
+    double position;
+    bool throughWorst;
   };
+  std::vector<Cut> cuts;
   for (const Vec3& axis : cutAxes(cell)) {
     double lo = std::numeric_limits<double>::infinity();
     double hi = -lo;
@@ -317,13 +436,30 @@ std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& 
       hi = std::max(hi, axis.dot(v));
     }
     for (int k = 1; k <= kCutsPerAxis; ++k) {
-      tryCut(axis, lo + (hi - lo) * k / (kCutsPerAxis + 1), false);
+      cuts.push_back({axis, lo + (hi - lo) * k / (kCutsPerAxis + 1), false});
     }
     const double worst = axis.dot(cell.worstPoint);
-    if (worst > lo + 0.02 * (hi - lo) && worst < hi - 0.02 * (hi - lo)) tryCut(axis, worst, true);
+    if (worst > lo + 0.02 * (hi - lo) && worst < hi - 0.02 * (hi - lo)) {
+      cuts.push_back({axis, worst, true});
+    }
   }
   for (const Vec3& normal : pocketNormals(cell, context.solid)) {
-    tryCut(normal, normal.dot(cell.worstPoint), true);
+    cuts.push_back({normal, normal.dot(cell.worstPoint), true});
+  }
+  // The children of every cut (independent tasks, shared with idle workers); a cut that leaves
+  // one side without volume is no candidate.
+  std::vector<std::optional<Candidate>> children(cuts.size());
+  runTasks(context.sharing, cuts.size(), [&](std::size_t k) {
+    const Cut& cut = cuts[k];
+    auto below = childCell(cell, HullPlane{cut.normal, cut.position}, context);
+    if (!below) return;
+    auto above = childCell(cell, HullPlane{-cut.normal, -cut.position}, context);
+    if (!above) return;
+    children[k] = Candidate{std::move(*below), std::move(*above), cut.throughWorst};
+  });
+  std::vector<Candidate> candidates;
+  for (auto& c : children) {
+    if (c) candidates.push_back(std::move(*c));
   }
   if (candidates.empty()) return std::nullopt;
   const auto volume = [](const Candidate& c) { return c.below.hullVolume + c.above.hullVolume; };
@@ -331,18 +467,39 @@ std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& 
   std::partial_sort(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(shortlist),
                     candidates.end(),
                     [&](const auto& a, const auto& b) { return volume(a) < volume(b); });
-  std::size_t best = 0;
-  double bestConcavity = std::numeric_limits<double>::infinity();
+  // The measured candidates (the shortlist and the cuts through the worst sample), each with the
+  // salt of its children's samples. They are measured least total volume first, which tends to
+  // set a low bar early so that the others stop sooner; the winner is the one whose larger child
+  // concavity is smallest, the first in candidate order among equals, whatever the order of
+  // measurement.
+  struct ToMeasure {
+    std::size_t index;
+    std::uint64_t salt;
+  };
+  std::vector<ToMeasure> toMeasure;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
-    Candidate& c = candidates[i];
-    if (i >= shortlist && !c.throughWorst) continue;
-    measureConcavity(c.below, context, measured++);
-    measureConcavity(c.above, context, measured++);
-    const double concavity = std::max(c.below.concavity, c.above.concavity);
-    if (concavity < bestConcavity) {
-      bestConcavity = concavity;
-      best = i;
+    if (i >= shortlist && !candidates[i].throughWorst) continue;
+    toMeasure.push_back({i, measured});
+    measured += 2;
+  }
+  std::stable_sort(toMeasure.begin(), toMeasure.end(), [&](const auto& a, const auto& b) {
+    return volume(candidates[a.index]) < volume(candidates[b.index]);
+  });
+  std::size_t best = candidates.size();
+  double bestConcavity = std::numeric_limits<double>::infinity();
+  for (const ToMeasure& m : toMeasure) {
+    Candidate& c = candidates[m.index];
+    // A candidate loses as soon as one child reaches the best concavity so far (passes it, for a
+    // candidate earlier in candidate order, which wins a tie).
+    const double stopAt =
+        m.index < best ? std::nextafter(bestConcavity, std::numeric_limits<double>::infinity())
+                       : bestConcavity;
+    if (!measureConcavity(c.below, context, m.salt, stopAt) ||
+        !measureConcavity(c.above, context, m.salt + 1, stopAt)) {
+      continue;
     }
+    bestConcavity = std::max(c.below.concavity, c.above.concavity);
+    best = m.index;
   }
   Candidate& chosen = candidates[best];
   clipPolygons(cell, chosen.below.walls.back(), context.tolerance, chosen.below);
@@ -375,39 +532,59 @@ bool boxesTouch(const Cell& a, const Cell& b, double tolerance) {
 
 // Greedy merging of neighbouring pieces (touching bounding boxes), the pair whose merged piece
 // has the smallest concavity first: forced while there are more than `maxPieces`, afterwards only
-// while that concavity stays within `budget`. Returns the number of merges.
+// while that concavity stays within `budget`. Returns the number of merges. Concavities are
+// measured lazily: a pair's measurement stops once it exceeds the best pair's, leaving a lower
+// bound that is completed only if it could still win (same choices as measuring every pair).
 std::size_t mergeNeighbours(std::vector<Cell>& cells, std::size_t maxPieces, double budget,
                             const Context& context, double tolerance, std::uint64_t& measured) {
+  struct Pair {
+    std::optional<Cell> merged;
+    std::uint64_t salt = 0;  // of the merged piece's concavity samples
+    bool exact = false;      // merged->concavity is measured, else a lower bound
+  };
   const std::size_t n = cells.size();
   std::vector<bool> alive(n, true);
-  std::vector<std::optional<Cell>> pairs(n * n);  // [i * n + j], i < j: the merged piece
+  std::vector<Pair> pairs(n * n);  // [i * n + j], i < j
   const auto price = [&](std::size_t i, std::size_t j) {
-    auto& pair = pairs[i * n + j];
-    pair.reset();
+    Pair& pair = pairs[i * n + j];
+    pair = Pair{};
     if (!boxesTouch(cells[i], cells[j], tolerance)) return;
-    pair = mergedCell(cells[i], cells[j], context.snap);
-    if (pair) measureConcavity(*pair, context, measured++);
+    pair.merged = mergedCell(cells[i], cells[j], context.snap);
+    if (pair.merged) pair.salt = measured++;
   };
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = i + 1; j < n; ++j) price(i, j);
   }
+  // The pair whose merged piece has the smallest concavity (the first of equals), or pairs.size().
+  const auto cheapest = [&] {
+    while (true) {
+      std::size_t best = pairs.size(), bound = pairs.size();
+      for (std::size_t k = 0; k < pairs.size(); ++k) {
+        if (!pairs[k].merged) continue;
+        const double concavity = pairs[k].merged->concavity;
+        std::size_t& current = pairs[k].exact ? best : bound;
+        if (current == pairs.size() || concavity < pairs[current].merged->concavity) current = k;
+      }
+      const double limit = best == pairs.size() ? std::numeric_limits<double>::infinity()
+                                                : pairs[best].merged->concavity;
+      if (bound == pairs.size() || pairs[bound].merged->concavity > limit) return best;
+      Pair& pair = pairs[bound];
+      pair.exact = measureConcavity(*pair.merged, context, pair.salt,
+                                    std::nextafter(limit, std::numeric_limits<double>::infinity()));
+    }
+  };
   std::size_t count = n, merges = 0;
   while (true) {
-    std::size_t best = pairs.size();
-    for (std::size_t k = 0; k < pairs.size(); ++k) {
-      if (pairs[k] && (best == pairs.size() || pairs[k]->concavity < pairs[best]->concavity)) {
-        best = k;
-      }
-    }
+    const std::size_t best = cheapest();
     if (best == pairs.size()) break;
-    if (count <= maxPieces && pairs[best]->concavity > budget) break;
+    if (count <= maxPieces && pairs[best].merged->concavity > budget) break;
     const std::size_t i = best / n, j = best % n;
-    cells[i] = std::move(*pairs[best]);
+    cells[i] = std::move(*pairs[best].merged);
     alive[j] = false;
     --count;
     ++merges;
     for (std::size_t k = 0; k < n; ++k) {
-      pairs[std::min(k, j) * n + std::max(k, j)].reset();
+      pairs[std::min(k, j) * n + std::max(k, j)] = Pair{};
       if (k != i && alive[k]) price(std::min(k, i), std::max(k, i));
     }
   }
@@ -556,7 +733,12 @@ bool ConvexPiece::contains(const Vec3& p, double tolerance) const {
                      [&](const HullPlane& h) { return h.normal.dot(p) <= h.offset + tolerance; });
 }
 
-Decomposition decomposeBounding(const TriangleMesh& mesh, const DecompositionOptions& options) {
+namespace {
+
+// decomposeBounding, with the candidate cuts' hulls shared with idle workers when `sharing`
+// is given.
+Decomposition decomposeSharing(const TriangleMesh& mesh, const DecompositionOptions& options,
+                               WorkSharing* sharing) {
   const auto start = std::chrono::steady_clock::now();
   if (std::isnan(options.epsilon) || options.epsilon < 0.0) {
     throw InputError("epsilon must be a positive distance");
@@ -605,8 +787,8 @@ Decomposition decomposeBounding(const TriangleMesh& mesh, const DecompositionOpt
 
   // Step 2: hierarchical plane splits, the worst concavity first.
   const Solid solid(bound, 1e-9 * stats.diagonal);
-  const Context context{solid, tolerance, 1e-8 * stats.diagonal, options.concavitySamples,
-                        options.seed};
+  const Context context{
+      sharing, solid, tolerance, 1e-8 * stats.diagonal, options.concavitySamples, options.seed};
   const double concavityBudget = kConcavityShare * stats.epsilon;
   Cell root;
   for (const Triangle& t : bound.triangles) {
@@ -674,6 +856,12 @@ Decomposition decomposeBounding(const TriangleMesh& mesh, const DecompositionOpt
   return result;
 }
 
+}  // namespace
+
+Decomposition decomposeBounding(const TriangleMesh& mesh, const DecompositionOptions& options) {
+  return decomposeSharing(mesh, options, nullptr);
+}
+
 std::vector<Decomposition> decomposeBoundingEach(std::span<const TriangleMesh> meshes,
                                                  const DecompositionOptions& options,
                                                  unsigned threads) {
@@ -686,19 +874,22 @@ std::vector<Decomposition> decomposeBoundingEach(std::span<const TriangleMesh> m
     return meshes[a].triangleCount() > meshes[b].triangleCount();
   });
   std::atomic<std::size_t> next{0};
+  const unsigned workers = std::max(threads, 1u);
+  WorkSharing sharing(workers);
   const auto work = [&] {
     for (std::size_t k = next++; k < meshes.size(); k = next++) {
       const std::size_t i = order[k];
       try {
-        results[i] = decomposeBounding(meshes[i], options);
+        results[i] = decomposeSharing(meshes[i], options, &sharing);
       } catch (...) {
         errors[i] = std::current_exception();
       }
     }
+    sharing.help();
   };
   {
     std::vector<std::jthread> helpers;
-    for (unsigned t = 1; t < std::max(threads, 1u); ++t) helpers.emplace_back(work);
+    for (unsigned t = 1; t < workers; ++t) helpers.emplace_back(work);
     work();
   }
   for (std::size_t i = 0; i < meshes.size(); ++i) {
