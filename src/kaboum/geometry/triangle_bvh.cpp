@@ -84,36 +84,19 @@ double surfaceArea(const Vec3& lo, const Vec3& hi) {
 }  // namespace
 
 Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a;
-  if (isThin(ab.cross(ac).squaredNorm(), longestEdgeSquared(a, b, c), kThinTolerance)) {
-    const Vec3 onAb = closestPointOnSegment(p, a, b);
-    const Vec3 onBc = closestPointOnSegment(p, b, c);
-    const Vec3 onCa = closestPointOnSegment(p, c, a);
-    const double dAb = (onAb - p).squaredNorm(), dBc = (onBc - p).squaredNorm(),
-                 dCa = (onCa - p).squaredNorm();
-    if (dAb <= dBc && dAb <= dCa) return onAb;
-    return dBc <= dCa ? onBc : onCa;
+  const Vec3 normal = (b - a).cross(c - a);
+  if (!isThin(normal.squaredNorm(), longestEdgeSquared(a, b, c), kThinTolerance) &&
+      normal.dot((b - a).cross(p - a)) >= 0.0 && normal.dot((c - b).cross(p - b)) >= 0.0 &&
+      normal.dot((a - c).cross(p - c)) >= 0.0) {
+    return p - normal * (normal.dot(p - a) / normal.squaredNorm());
   }
-  // Ericson's Voronoi-region walk: corners, then edges, then the inside.
-  const Vec3 ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0.0 && d2 <= 0.0) return a;
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0.0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + (d1 / (d1 - d3)) * ab;
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0.0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + (d2 / (d2 - d6)) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0) {
-    return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
-  }
-  const double scale = 1.0 / (va + vb + vc);
-  return a + ab * (vb * scale) + ac * (vc * scale);
+  const Vec3 onAb = closestPointOnSegment(p, a, b);
+  const Vec3 onBc = closestPointOnSegment(p, b, c);
+  const Vec3 onCa = closestPointOnSegment(p, c, a);
+  const double dAb = (onAb - p).squaredNorm(), dBc = (onBc - p).squaredNorm(),
+               dCa = (onCa - p).squaredNorm();
+  if (dAb <= dBc && dAb <= dCa) return onAb;
+  return dBc <= dCa ? onBc : onCa;
 }
 
 namespace {

@@ -12,9 +12,9 @@
 
 namespace kaboum {
 
-// Closest point of triangle (a, b, c) to `p` (Ericson, Real-Time Collision Detection §5.1.5).
-// Triangles thinner than 1e-8 of their longest edge use the edges only, so zero-area triangles
-// are handled as segments or points.
+// Closest point of triangle (a, b, c) to `p`: the projection onto the plane when it falls inside,
+// else the closest point of the three edges. Triangles thinner than 1e-8 of their longest edge
+// use the edges only, so zero-area triangles are handled as segments or points.
 Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 
 // Closed segment/triangle and triangle/triangle intersection with a contact tolerance: true when
