@@ -94,6 +94,10 @@ struct Best {
 
 }  // namespace
 
+std::optional<Vec3> unconstrainedMinimizer(const Quadric& q) {
+  return solveOnSubspace(q, {});
+}
+
 ContractionPoint solveContractionExhaustive(const Quadric& q, std::span<const HalfSpace> halfSpaces,
                                             double tolerance) {
   Best best;
@@ -123,7 +127,7 @@ ContractionPoint solveContraction(const Quadric& q, std::span<const HalfSpace> h
                                   double tolerance) {
   std::array<const HalfSpace*, 3> active{};
   std::size_t activeCount = 0;
-  auto start = solveOnSubspace(q, {});
+  auto start = unconstrainedMinimizer(q);
   if (!start) return solveContractionExhaustive(q, halfSpaces, tolerance);
   Vec3 x = *start;
   double cost = q(x);

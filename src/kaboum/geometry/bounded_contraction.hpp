@@ -2,6 +2,7 @@
 // subject to the new vertex lying on the kept side of every plane around the contracted edge.
 #pragma once
 
+#include <optional>
 #include <span>
 
 #include "kaboum/geometry/quadric.hpp"
@@ -20,6 +21,10 @@ struct ContractionPoint {
   Vec3 position = Vec3::Zero();
   double cost = 0.0;  // q(position)
 };
+
+// The unconstrained minimizer of `q` (Eq. 4.15); nullopt unless `q` is positive definite. It is
+// where solveContraction starts, so q at it is a lower bound of the constrained minimum.
+std::optional<Vec3> unconstrainedMinimizer(const Quadric& q);
 
 // Algorithm 1 as published: enumerate every subset of 0–3 half-spaces held as equalities, solve
 // each subspace in closed form (Eq. 4.15–4.18) and keep the cheapest candidate satisfying all
