@@ -143,7 +143,14 @@ ContractionPoint solveContraction(const Quadric& q, std::span<const HalfSpace> h
         violated = &h;
       }
     }
-    if (violated == nullptr) return {true, x, cost};
+    if (violated == nullptr) {
+      ContractionPoint optimum{true, x, cost};
+      optimum.activeCount = static_cast<int>(activeCount);
+      for (std::size_t i = 0; i < activeCount; ++i) {
+        optimum.active[i] = static_cast<int>(active[i] - halfSpaces.data());
+      }
+      return optimum;
+    }
 
     // The optimum over active ∪ {violated} has `violated` active (else it would be the current x,
     // which violates it), so only subsets containing it are candidates: {v}, {a,v}, {a,b,v}.

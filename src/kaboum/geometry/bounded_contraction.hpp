@@ -2,6 +2,7 @@
 // subject to the new vertex lying on the kept side of every plane around the contracted edge.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <span>
 
@@ -20,6 +21,10 @@ struct ContractionPoint {
   bool feasible = false;  // false: no point satisfies every half-space
   Vec3 position = Vec3::Zero();
   double cost = 0.0;  // q(position)
+  // Indices of the half-spaces held as equalities at the optimum, when known (-1 for unused slots;
+  // activeCount < 0: unknown). The optimum stays optimal without the other half-spaces.
+  std::array<int, 3> active{-1, -1, -1};
+  int activeCount = -1;
 };
 
 // The unconstrained minimizer of `q` (Eq. 4.15); nullopt unless `q` is positive definite. It is

@@ -27,7 +27,7 @@ enum class EdgeState : std::uint8_t {
   Off,         // not a candidate: an endpoint is locked, or the edge was contracted away
   Lower,       // queued by its lower bound, not solved with the current planes
   Solved,      // queued by its exact cost; edgePositions_ holds its contraction point
-  Infeasible,  // queued by its lower bound; no point satisfies the current planes
+  Infeasible,  // queued last (key +∞): no point satisfies the current planes
   Parked,      // rejected; retried when the queue runs empty if its neighbourhood changed
 };
 
@@ -76,6 +76,7 @@ class BoundingMeshSimplifier {
   void queueEdge(std::uint32_t e);
   void solveEdge(std::uint32_t e);
   void invalidateEdge(std::uint32_t e);
+  double boundAfterChange(std::uint32_t e) const;
   void park(std::uint32_t e);
   enum class Outcome { Done, Topology, Geometry, Crossing };
   bool newFanCrossesMesh(const Contraction& c);
@@ -119,8 +120,16 @@ class BoundingMeshSimplifier {
   std::vector<Vec3> edgePositions_;            // contraction point of a Solved edge
   std::vector<std::uint32_t> parkedVersions_;  // versionsOf(e) when it was parked
   std::vector<std::uint8_t> edgeListed_;       // in parked_
-  IndexedMinHeap queue_;                       // queued edges by key, ties by edge id
-  std::vector<std::uint32_t> parked_;          // parked edges (and some no longer parked)
+  // The last solve of each edge: its cost, when (contractionCount_) and its active triangles.
+  std::vector<double> solvedCosts_;
+  std::vector<std::uint32_t> solvedAt_;
+  std::vector<std::array<std::uint32_t, 3>> activeTriangles_;
+  std::vector<std::uint8_t> activeKnown_;
+  std::vector<std::uint32_t> triangleChangedAt_;  // contractionCount_ when its plane last changed
+  std::uint32_t contractionCount_ = 0;
+  double costSlack_ = 0.0;  // absolute rounding allowance of a cost: 10⁻¹⁰ of the diagonal²
+  IndexedMinHeap queue_;    // queued edges by key, ties by edge id
+  std::vector<std::uint32_t> parked_;  // parked edges (and some no longer parked)
   // Scratch, reused by every call so the main loop does not allocate once warmed up.
   std::vector<std::uint32_t> fanA_, fanB_, neighbours_, solveFanU_, solveFanV_;
   struct NewTriangle {  // a triangle of the fan a contraction would create
@@ -134,6 +143,7 @@ class BoundingMeshSimplifier {
   std::vector<PlanedTriangle> newPlaned_;  // views of newTriangles_ for certainlyApart
   std::vector<std::uint32_t> nearby_;
   std::vector<HalfSpace> halfSpaces_;
+  std::vector<std::uint32_t> halfSpaceTriangles_;  // the triangle of each half-space
   BoundingMeshStats stats_;
 };
 
@@ -299,6 +309,7 @@ void BoundingMeshSimplifier::addHalfSpace(std::uint32_t t, const Vec3& origin) {
   if (n.x() == 0.0 && n.y() == 0.0 && n.z() == 0.0) return;  // degenerate: no plane to stay above
   const double sign = options_.side == BoundSide::Outer ? 1.0 : -1.0;
   halfSpaces_.push_back({sign * n, sign * (offsets_[t] - n.dot(origin))});
+  halfSpaceTriangles_.push_back(t);
 }
 
 // The edge's merged quadric in coordinates centred on the edge (so large absolute coordinates lose
@@ -319,6 +330,7 @@ EdgeProblem BoundingMeshSimplifier::problemOf(std::uint32_t e) const {
 void BoundingMeshSimplifier::queueEdge(std::uint32_t e) {
   lowerBounds_[e] = problemOf(e).lowerBound;
   edgeState_[e] = EdgeState::Lower;
+  activeKnown_[e] = 0;
   queue_.set(e, lowerBounds_[e]);
   if (!options_.lazyQueue) solveEdge(e);
 }
@@ -332,6 +344,7 @@ void BoundingMeshSimplifier::solveEdge(std::uint32_t e) {
   gatherFan(b, solveFanV_);
   const EdgeProblem p = problemOf(e);
   halfSpaces_.clear();
+  halfSpaceTriangles_.clear();
   for (std::uint32_t t : solveFanU_) addHalfSpace(t, p.origin);
   for (std::uint32_t t : solveFanV_) {
     if (!contains(t, a)) addHalfSpace(t, p.origin);
@@ -339,7 +352,7 @@ void BoundingMeshSimplifier::solveEdge(std::uint32_t e) {
   const ContractionPoint point = solveContraction(p.quadric, halfSpaces_, tolerance_);
   if (!point.feasible) {
     edgeState_[e] = EdgeState::Infeasible;
-    queue_.set(e, p.lowerBound);
+    queue_.set(e, std::numeric_limits<double>::infinity());
     return;
   }
   double cost = std::max(p.quadric(point.position), 0.0);
@@ -350,16 +363,49 @@ void BoundingMeshSimplifier::solveEdge(std::uint32_t e) {
   edgeState_[e] = EdgeState::Solved;
   edgePositions_[e] = p.origin + point.position;
   queue_.set(e, cost);
+  solvedCosts_[e] = cost;
+  solvedAt_[e] = contractionCount_;
+  activeTriangles_[e] = {kNone, kNone, kNone};
+  activeKnown_[e] = point.activeCount >= 0;
+  for (int i = 0; i < point.activeCount; ++i) {
+    activeTriangles_[e][static_cast<std::size_t>(i)] =
+        halfSpaceTriangles_[static_cast<std::size_t>(point.active[static_cast<std::size_t>(i)])];
+  }
 }
 
-// Edge e's planes changed: its exact cost is no longer known, its lower bound still holds.
+// A lower bound of edge e's exact cost after its planes changed. If none of the planes held as
+// equalities at its last optimum changed since, that optimum is still the optimum over the planes
+// that did not change (the KKT conditions involve only the active ones), and adding the changed
+// planes can only raise it: its cost (less a relative 10⁻⁷ for rounding) bounds the new one.
+// Otherwise the unconstrained minimum does.
+double BoundingMeshSimplifier::boundAfterChange(std::uint32_t e) const {
+  if (!activeKnown_[e]) return lowerBounds_[e];
+  for (const std::uint32_t t : activeTriangles_[e]) {
+    if (t != kNone && (!triangleAlive_[t] || triangleChangedAt_[t] > solvedAt_[e])) {
+      return lowerBounds_[e];
+    }
+  }
+  return std::max(lowerBounds_[e], solvedCosts_[e] * (1.0 - 1e-7) - costSlack_);
+}
+
+// Edge e's planes changed: its exact cost is no longer known, only a lower bound.
 void BoundingMeshSimplifier::invalidateEdge(std::uint32_t e) {
-  if (edgeState_[e] != EdgeState::Solved && edgeState_[e] != EdgeState::Infeasible) return;
-  if (options_.lazyQueue) {
-    edgeState_[e] = EdgeState::Lower;
-    queue_.set(e, lowerBounds_[e]);
-  } else {
+  const EdgeState state = edgeState_[e];
+  if (state == EdgeState::Off || state == EdgeState::Parked) return;
+  if (!options_.lazyQueue) {
     solveEdge(e);
+    return;
+  }
+  if (state == EdgeState::Infeasible) {
+    edgeState_[e] = EdgeState::Lower;
+    activeKnown_[e] = 0;
+    queue_.set(e, lowerBounds_[e]);
+    return;
+  }
+  const double bound = boundAfterChange(e);
+  if (state == EdgeState::Solved || bound < queue_.key(e)) {
+    edgeState_[e] = EdgeState::Lower;
+    queue_.set(e, bound);
   }
 }
 
@@ -435,11 +481,13 @@ BoundingMeshSimplifier::Outcome BoundingMeshSimplifier::contract(std::uint32_t e
   if (newFanCrossesMesh(c)) return Outcome::Crossing;
 
   // Execute: b merges into a at the new position.
+  ++contractionCount_;
   retireMergedEdges(a, b);
   for (std::uint32_t t : fanA_) {
     if (contains(t, b)) {
       grid_->remove(t, boxes_[t]);
       triangleAlive_[t] = 0;
+      triangleChangedAt_[t] = contractionCount_;
       for (std::uint32_t w : triangles_[t]) --triangleCount_[w];
     }
   }
@@ -464,6 +512,7 @@ BoundingMeshSimplifier::Outcome BoundingMeshSimplifier::contract(std::uint32_t e
   fanA_.clear();
   forEachTriangle(a, [&](std::uint32_t t) {
     updatePlane(t);
+    triangleChangedAt_[t] = contractionCount_;
     const Box3 box = boxOf(t);
     grid_->move(t, boxes_[t], box);
     boxes_[t] = box;
@@ -673,6 +722,11 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
   edgePositions_.resize(edgeCount);
   parkedVersions_.assign(edgeCount, 0);
   edgeListed_.assign(edgeCount, 0);
+  solvedCosts_.assign(edgeCount, 0.0);
+  solvedAt_.assign(edgeCount, 0);
+  activeTriangles_.resize(edgeCount);
+  activeKnown_.assign(edgeCount, 0);
+  triangleChangedAt_.assign(triangles_.size(), 0);
   queue_.reset(edgeCount);
   lockNonManifoldVertices();
   for (std::uint32_t t = 0; t < triangles_.size(); ++t) updatePlane(t);
@@ -692,6 +746,7 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
   }
   const double diagonal = aliveVertices_ > 0 ? (hi - lo).norm() : 0.0;
   tolerance_ = 1e-12 * diagonal;
+  costSlack_ = 1e-10 * diagonal * diagonal;
   if (options_.mergeLength <= 0.0) options_.mergeLength = 0.01 * diagonal;
   stats_.inputVertices = aliveVertices_;
   double edgeLengthSum = 0.0;
