@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <random>
 #include <set>
@@ -225,6 +226,47 @@ TEST(BoundingMesh, IsDeterministic) {
   EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
   for (std::size_t i = 0; i < a.mesh.vertices.size(); ++i) {
     EXPECT_EQ(a.mesh.vertices[i], b.mesh.vertices[i]);
+  }
+}
+
+// The lazy queue solves an edge only when it reaches the top, yet must contract exactly the edges
+// the eager queue (every queued edge solved at once) contracts, in the same order: same output
+// bits, same counts, on both sides, with a vertex target, with an error limit, and with each merge.
+TEST(BoundingMesh, LazyQueueGivesTheEagerQueuesResultBitForBit) {
+  struct Case {
+    const char* mesh;
+    BoundSide side;
+    double ratio, maxErrorOfDiagonal;
+    QuadricMerge merge;
+  };
+  const double noLimit = std::numeric_limits<double>::infinity();
+  for (const Case& k :
+       {Case{"spot.obj", BoundSide::Outer, 0.1, noLimit, QuadricMerge::Constant},
+        Case{"spot.obj", BoundSide::Inner, 0.1, noLimit, QuadricMerge::Constant},
+        Case{"cow.obj", BoundSide::Outer, 0.05, noLimit, QuadricMerge::Full},
+        Case{"cow.obj", BoundSide::Inner, 0.2, noLimit, QuadricMerge::Sum},
+        Case{"fandisk.obj", BoundSide::Outer, 0.0, 0.01, QuadricMerge::Constant},
+        Case{"kr5-wrist.stl", BoundSide::Inner, 0.0, 0.02, QuadricMerge::Constant}}) {
+    const TriangleMesh mesh = loadOriented(fs::path(KABOUM_DATA_DIR) / "meshes" / k.mesh);
+    BoundingMeshOptions options;
+    options.side = k.side;
+    options.merge = k.merge;
+    options.targetVertices =
+        static_cast<std::size_t>(k.ratio * static_cast<double>(mesh.vertices.size()));
+    options.maxError = k.maxErrorOfDiagonal * analyzeMesh(mesh).diagonal;
+    const BoundingMeshResult lazy = simplifyBounding(mesh, options);
+    options.lazyQueue = false;
+    const BoundingMeshResult eager = simplifyBounding(mesh, options);
+    const std::string what =
+        std::string(k.mesh) + (k.side == BoundSide::Outer ? " outer" : " inner");
+    EXPECT_GT(lazy.stats.contractions, mesh.vertices.size() / 4) << what;
+    EXPECT_EQ(lazy.stats.contractions, eager.stats.contractions) << what;
+    EXPECT_EQ(lazy.stats.rejectedTopology, eager.stats.rejectedTopology) << what;
+    EXPECT_EQ(lazy.stats.rejectedGeometry, eager.stats.rejectedGeometry) << what;
+    EXPECT_EQ(lazy.stats.rejectedCrossing, eager.stats.rejectedCrossing) << what;
+    EXPECT_EQ(lazy.stats.quadricError, eager.stats.quadricError) << what;
+    EXPECT_EQ(lazy.mesh.triangles, eager.mesh.triangles) << what;
+    EXPECT_EQ(lazy.mesh.vertices, eager.mesh.vertices) << what;
   }
 }
 

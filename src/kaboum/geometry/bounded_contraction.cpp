@@ -94,6 +94,10 @@ struct Best {
 
 }  // namespace
 
+std::optional<Vec3> unconstrainedMinimizer(const Quadric& q) {
+  return solveOnSubspace(q, {});
+}
+
 ContractionPoint solveContractionExhaustive(const Quadric& q, std::span<const HalfSpace> halfSpaces,
                                             double tolerance) {
   Best best;
@@ -123,7 +127,7 @@ ContractionPoint solveContraction(const Quadric& q, std::span<const HalfSpace> h
                                   double tolerance) {
   std::array<const HalfSpace*, 3> active{};
   std::size_t activeCount = 0;
-  auto start = solveOnSubspace(q, {});
+  auto start = unconstrainedMinimizer(q);
   if (!start) return solveContractionExhaustive(q, halfSpaces, tolerance);
   Vec3 x = *start;
   double cost = q(x);
@@ -139,7 +143,14 @@ ContractionPoint solveContraction(const Quadric& q, std::span<const HalfSpace> h
         violated = &h;
       }
     }
-    if (violated == nullptr) return {true, x, cost};
+    if (violated == nullptr) {
+      ContractionPoint optimum{true, x, cost};
+      optimum.activeCount = static_cast<int>(activeCount);
+      for (std::size_t i = 0; i < activeCount; ++i) {
+        optimum.active[i] = static_cast<int>(active[i] - halfSpaces.data());
+      }
+      return optimum;
+    }
 
     // The optimum over active ∪ {violated} has `violated` active (else it would be the current x,
     // which violates it), so only subsets containing it are candidates: {v}, {a,v}, {a,b,v}.

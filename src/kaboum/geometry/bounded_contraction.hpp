@@ -2,6 +2,8 @@
 // subject to the new vertex lying on the kept side of every plane around the contracted edge.
 #pragma once
 
+#include <array>
+#include <optional>
 #include <span>
 
 #include "kaboum/geometry/quadric.hpp"
@@ -19,7 +21,15 @@ struct ContractionPoint {
   bool feasible = false;  // false: no point satisfies every half-space
   Vec3 position = Vec3::Zero();
   double cost = 0.0;  // q(position)
+  // Indices of the half-spaces held as equalities at the optimum, when known (-1 for unused slots;
+  // activeCount < 0: unknown). The optimum stays optimal without the other half-spaces.
+  std::array<int, 3> active{-1, -1, -1};
+  int activeCount = -1;
 };
+
+// The unconstrained minimizer of `q` (Eq. 4.15); nullopt unless `q` is positive definite. It is
+// where solveContraction starts, so q at it is a lower bound of the constrained minimum.
+std::optional<Vec3> unconstrainedMinimizer(const Quadric& q);
 
 // Algorithm 1 as published: enumerate every subset of 0–3 half-spaces held as equalities, solve
 // each subspace in closed form (Eq. 4.15–4.18) and keep the cheapest candidate satisfying all

@@ -11,6 +11,7 @@
 
 #include "kaboum/core/error.hpp"
 #include "kaboum/geometry/bounded_contraction.hpp"
+#include "kaboum/geometry/indexed_heap.hpp"
 #include "kaboum/geometry/separation_certificate.hpp"
 #include "kaboum/geometry/triangle_bvh.hpp"
 #include "kaboum/geometry/triangle_grid.hpp"
@@ -20,16 +21,28 @@ namespace {
 
 constexpr std::uint32_t kNone = 0xffffffffu;
 
-// A candidate contraction of edge (a, b) to `position`. It is current while the versions of both
-// vertices match; their fan versions tell whether a fresher entry for the edge has been queued
-// since. Versions only grow (by at most one per contraction), so each pair is kept as its sum,
-// which is unchanged exactly when both are: 48 bytes per heap entry.
-struct Candidate {
-  double cost;
-  Vec3 position;
+// Where an edge stands in the greedy loop. A queued edge's key is its exact cost when Solved, and
+// otherwise the lower bound of its cost (the unconstrained minimum of its quadric), see run().
+enum class EdgeState : std::uint8_t {
+  Off,         // not a candidate: an endpoint is locked, or the edge was contracted away
+  Lower,       // queued by its lower bound, not solved with the current planes
+  Solved,      // queued by its exact cost; edgePositions_ holds its contraction point
+  Infeasible,  // queued last (key +∞): no point satisfies the current planes
+  Parked,      // rejected; retried when the queue runs empty if its neighbourhood changed
+};
+
+// The contraction of edge (a, b): b merges into a, which moves to `position`.
+struct Contraction {
   std::uint32_t a, b;
-  std::uint32_t versions, fanVersions;
-  bool operator>(const Candidate& o) const { return cost > o.cost; }
+  Vec3 position;
+};
+
+// An edge's quadric in coordinates centred on the edge, with its unconstrained minimizer.
+struct EdgeProblem {
+  Vec3 origin;
+  Quadric quadric;  // regularized, positive definite
+  std::optional<Vec3> start;
+  double lowerBound;  // of the cost: the quadric at `start` (0 without one)
 };
 
 class BoundingMeshSimplifier {
@@ -41,7 +54,7 @@ class BoundingMeshSimplifier {
 
  private:
   void buildAdjacency();
-  void classifyEdges(std::vector<std::pair<std::uint32_t, std::uint32_t>>& interiorEdges);
+  void classifyEdges(std::vector<std::uint32_t>& interiorEdges);
   void lockNonManifoldVertices();
   void updatePlane(std::uint32_t t);
   void initQuadrics();
@@ -50,32 +63,32 @@ class BoundingMeshSimplifier {
   void forEachTriangle(std::uint32_t v, F&& f);
   void gatherFan(std::uint32_t v, std::vector<std::uint32_t>& fan);
   void gatherNeighbours(std::uint32_t v, std::vector<std::uint32_t>& out);
-  std::uint32_t versionsOf(std::uint32_t a, std::uint32_t b) const {
-    return version_[a] + version_[b];
-  }
-  std::uint32_t fanVersionsOf(std::uint32_t a, std::uint32_t b) const {
-    return fanVersion_[a] + fanVersion_[b];
+  // Versions only grow, so the sum is unchanged exactly when both are.
+  std::uint32_t versionsOf(std::uint32_t e) const {
+    return version_[edgeEnds_[e][0]] + version_[edgeEnds_[e][1]];
   }
   bool contains(std::uint32_t t, std::uint32_t v) const {
     return triangles_[t][0] == v || triangles_[t][1] == v || triangles_[t][2] == v;
   }
 
-  bool evaluate(std::uint32_t a, std::uint32_t b, Candidate& out);
-  bool evaluateGathered(std::uint32_t a, std::uint32_t b, Candidate& out);
+  EdgeProblem problemOf(std::uint32_t e) const;
   void addHalfSpace(std::uint32_t t, const Vec3& origin);
-  void queue(std::uint32_t a, std::uint32_t b);
-  void queueGathered(std::uint32_t a, std::uint32_t b);
-  enum class Outcome { Done, Stale, Topology, Geometry, Crossing };
-  bool stillAboveFanPlanes(const Candidate& c) const;
-  bool newFanCrossesMesh(const Candidate& c);
+  void queueEdge(std::uint32_t e);
+  void solveEdge(std::uint32_t e);
+  void invalidateEdge(std::uint32_t e);
+  double boundAfterChange(std::uint32_t e) const;
+  void park(std::uint32_t e);
+  enum class Outcome { Done, Topology, Geometry, Crossing };
+  bool newFanCrossesMesh(const Contraction& c);
   void buildGrid(double cellSize);
   Box3 boxOf(std::uint32_t t) const {
     return triangleBox(positions_[triangles_[t][0]], positions_[triangles_[t][1]],
                        positions_[triangles_[t][2]]);
   }
-  Outcome contract(const Candidate& c);
+  Outcome contract(std::uint32_t e);
+  void retireMergedEdges(std::uint32_t a, std::uint32_t b);
+  void requeueAround(std::uint32_t a);
   bool revisitParked();
-  void purgeHeap();
   TriangleMesh compact() const;
 
   BoundingMeshOptions options_;
@@ -89,7 +102,7 @@ class BoundingMeshSimplifier {
   std::vector<std::uint32_t> triangleCount_;
   std::vector<Quadric> quadrics_;
   std::vector<std::uint8_t> vertexAlive_, vertexLocked_;
-  std::vector<std::uint32_t> version_, fanVersion_;
+  std::vector<std::uint32_t> version_;  // grows whenever the vertex's neighbourhood changes
   std::vector<std::uint32_t> markA_, markB_;
   std::vector<std::uint32_t> triangleMark_;  // stamps for excluding/deduplicating triangles
   std::vector<Box3> boxes_;                  // each live triangle's box as registered in grid_
@@ -99,10 +112,26 @@ class BoundingMeshSimplifier {
   std::size_t aliveVertices_ = 0;
   double tolerance_ = 0.0;
 
-  std::vector<Candidate> heap_;    // binary min-heap on cost (std::push_heap with std::greater)
-  std::vector<Candidate> parked_;  // rejected candidates, retried once their neighbourhood changes
+  // Edges: cornerEdge_[3t + k] is the edge from corner k of triangle t to corner k + 1.
+  std::vector<std::uint32_t> cornerEdge_;
+  std::vector<std::array<std::uint32_t, 2>> edgeEnds_;  // (survivor, merged) of a contraction
+  std::vector<EdgeState> edgeState_;
+  std::vector<double> lowerBounds_;
+  std::vector<Vec3> edgePositions_;            // contraction point of a Solved edge
+  std::vector<std::uint32_t> parkedVersions_;  // versionsOf(e) when it was parked
+  std::vector<std::uint8_t> edgeListed_;       // in parked_
+  // The last solve of each edge: its cost, when (contractionCount_) and its active triangles.
+  std::vector<double> solvedCosts_;
+  std::vector<std::uint32_t> solvedAt_;
+  std::vector<std::array<std::uint32_t, 3>> activeTriangles_;
+  std::vector<std::uint8_t> activeKnown_;
+  std::vector<std::uint32_t> triangleChangedAt_;  // contractionCount_ when its plane last changed
+  std::uint32_t contractionCount_ = 0;
+  double costSlack_ = 0.0;  // absolute rounding allowance of a cost: 10⁻¹⁰ of the diagonal²
+  IndexedMinHeap queue_;    // queued edges by key, ties by edge id
+  std::vector<std::uint32_t> parked_;  // parked edges (and some no longer parked)
   // Scratch, reused by every call so the main loop does not allocate once warmed up.
-  std::vector<std::uint32_t> fanA_, fanB_, neighbours_;
+  std::vector<std::uint32_t> fanA_, fanB_, neighbours_, solveFanU_, solveFanV_;
   struct NewTriangle {  // a triangle of the fan a contraction would create
     Triangle ids;
     std::array<Vec3, 3> corners;
@@ -114,6 +143,7 @@ class BoundingMeshSimplifier {
   std::vector<PlanedTriangle> newPlaned_;  // views of newTriangles_ for certainlyApart
   std::vector<std::uint32_t> nearby_;
   std::vector<HalfSpace> halfSpaces_;
+  std::vector<std::uint32_t> halfSpaceTriangles_;  // the triangle of each half-space
   BoundingMeshStats stats_;
 };
 
@@ -166,32 +196,38 @@ void BoundingMeshSimplifier::buildAdjacency() {
   }
 }
 
-void BoundingMeshSimplifier::classifyEdges(
-    std::vector<std::pair<std::uint32_t, std::uint32_t>>& interiorEdges) {
+// Numbers the edges in order of (lower, higher) vertex, fills cornerEdge_ and edgeEnds_, locks the
+// vertices of border and non-manifold edges and lists the interior edges.
+void BoundingMeshSimplifier::classifyEdges(std::vector<std::uint32_t>& interiorEdges) {
   struct HalfEdge {
     std::uint64_t key;  // min vertex << 32 | max vertex
-    bool forward;       // stored direction is min → max
+    std::uint32_t corner;
+    bool forward;  // stored direction is min → max
   };
   std::vector<HalfEdge> halfEdges;
   halfEdges.reserve(triangles_.size() * 3);
-  for (const Triangle& t : triangles_) {
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t u = t[k], w = t[(k + 1) % 3];
+  for (std::uint32_t t = 0; t < triangles_.size(); ++t) {
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      const std::uint32_t u = triangles_[t][k], w = triangles_[t][(k + 1) % 3];
       const std::uint64_t lo = std::min(u, w), hi = std::max(u, w);
-      halfEdges.push_back({lo << 32 | hi, u < w});
+      halfEdges.push_back({lo << 32 | hi, 3 * t + k, u < w});
     }
   }
+  cornerEdge_.assign(halfEdges.size(), kNone);
   std::sort(halfEdges.begin(), halfEdges.end(),
             [](const HalfEdge& l, const HalfEdge& r) { return l.key < r.key; });
   for (std::size_t i = 0; i < halfEdges.size();) {
     std::size_t j = i;
     int forward = 0;
+    const auto edge = static_cast<std::uint32_t>(edgeEnds_.size());
     while (j < halfEdges.size() && halfEdges[j].key == halfEdges[i].key) {
       forward += halfEdges[j].forward ? 1 : 0;
+      cornerEdge_[halfEdges[j].corner] = edge;
       ++j;
     }
     const auto lo = static_cast<std::uint32_t>(halfEdges[i].key >> 32);
     const auto hi = static_cast<std::uint32_t>(halfEdges[i].key & 0xffffffffu);
+    edgeEnds_.push_back({lo, hi});
     const std::size_t count = j - i;
     if (count == 2 && forward != 1) {
       throw InputError("triangles are not consistently oriented (edge between vertices " +
@@ -199,7 +235,7 @@ void BoundingMeshSimplifier::classifyEdges(
                        " is traversed twice in the same direction)");
     }
     if (count == 2) {
-      interiorEdges.emplace_back(lo, hi);
+      interiorEdges.push_back(edge);
     } else {  // border (1) or non-manifold (> 2): keep it exactly as it is
       vertexLocked_[lo] = vertexLocked_[hi] = 1;
     }
@@ -273,61 +309,123 @@ void BoundingMeshSimplifier::addHalfSpace(std::uint32_t t, const Vec3& origin) {
   if (n.x() == 0.0 && n.y() == 0.0 && n.z() == 0.0) return;  // degenerate: no plane to stay above
   const double sign = options_.side == BoundSide::Outer ? 1.0 : -1.0;
   halfSpaces_.push_back({sign * n, sign * (offsets_[t] - n.dot(origin))});
+  halfSpaceTriangles_.push_back(t);
 }
 
-bool BoundingMeshSimplifier::evaluate(std::uint32_t a, std::uint32_t b, Candidate& out) {
-  gatherFan(a, fanA_);
-  gatherFan(b, fanB_);
-  return evaluateGathered(a, b, out);
+// The edge's merged quadric in coordinates centred on the edge (so large absolute coordinates lose
+// no precision), with a tiny pull towards the edge midpoint that makes the problem strictly convex:
+// flat and cylindrical neighbourhoods (singular quadrics) get a unique, central minimizer.
+EdgeProblem BoundingMeshSimplifier::problemOf(std::uint32_t e) const {
+  const auto [a, b] = edgeEnds_[e];
+  EdgeProblem p;
+  p.origin = 0.5 * (positions_[a] + positions_[b]);
+  p.quadric = (quadrics_[a] + quadrics_[b]).centredAt(p.origin);
+  p.quadric.a += (1e-9 * p.quadric.a.trace() + 1e-300) * Eigen::Matrix3d::Identity();
+  p.start = unconstrainedMinimizer(p.quadric);
+  p.lowerBound = p.start ? std::max(p.quadric(*p.start), 0.0) : 0.0;
+  return p;
 }
 
-// As evaluate, with fanA_ and fanB_ already holding the fans of a and b.
-bool BoundingMeshSimplifier::evaluateGathered(std::uint32_t a, std::uint32_t b, Candidate& out) {
-  // Work in coordinates centred on the edge so large absolute coordinates lose no precision.
-  const Vec3 origin = 0.5 * (positions_[a] + positions_[b]);
+// Queues edge e by the lower bound of its cost (lazy), or by its exact cost (eager reference).
+void BoundingMeshSimplifier::queueEdge(std::uint32_t e) {
+  lowerBounds_[e] = problemOf(e).lowerBound;
+  edgeState_[e] = EdgeState::Lower;
+  activeKnown_[e] = 0;
+  queue_.set(e, lowerBounds_[e]);
+  if (!options_.lazyQueue) solveEdge(e);
+}
+
+// Solves edge e's constrained problem (Algorithm 1) with the current planes and re-keys it by its
+// exact cost. The cost is the lower bound plus (x - x₀)ᵀA(x - x₀) ≥ 0, which equals q(x) for the
+// minimizer x₀ of q, and is never below the lower bound even in floating point.
+void BoundingMeshSimplifier::solveEdge(std::uint32_t e) {
+  const auto [a, b] = edgeEnds_[e];
+  gatherFan(a, solveFanU_);
+  gatherFan(b, solveFanV_);
+  const EdgeProblem p = problemOf(e);
   halfSpaces_.clear();
-  for (std::uint32_t t : fanA_) addHalfSpace(t, origin);
-  for (std::uint32_t t : fanB_) {
-    if (!contains(t, a)) addHalfSpace(t, origin);
+  halfSpaceTriangles_.clear();
+  for (std::uint32_t t : solveFanU_) addHalfSpace(t, p.origin);
+  for (std::uint32_t t : solveFanV_) {
+    if (!contains(t, a)) addHalfSpace(t, p.origin);
   }
-  const Quadric q = (quadrics_[a] + quadrics_[b]).centredAt(origin);
-  // A tiny pull towards the edge midpoint makes the problem strictly convex, so flat and
-  // cylindrical neighbourhoods (singular quadrics) have a unique, central minimizer.
-  Quadric regularized = q;
-  regularized.a += (1e-9 * q.a.trace() + 1e-300) * Eigen::Matrix3d::Identity();
-  const ContractionPoint point = solveContraction(regularized, halfSpaces_, tolerance_);
-  if (!point.feasible) return false;
-  out = {std::max(q(point.position), 0.0),
-         origin + point.position,
-         a,
-         b,
-         versionsOf(a, b),
-         fanVersionsOf(a, b)};
-  return true;
-}
-
-void BoundingMeshSimplifier::queue(std::uint32_t a, std::uint32_t b) {
-  gatherFan(a, fanA_);
-  gatherFan(b, fanB_);
-  queueGathered(a, b);
-}
-
-void BoundingMeshSimplifier::queueGathered(std::uint32_t a, std::uint32_t b) {
-  Candidate c;
-  if (evaluateGathered(a, b, c)) {
-    heap_.push_back(c);
-    std::push_heap(heap_.begin(), heap_.end(), std::greater<>{});
-  } else {
-    ++stats_.rejectedInfeasible;
+  const ContractionPoint point = solveContraction(p.quadric, halfSpaces_, tolerance_);
+  if (!point.feasible) {
+    edgeState_[e] = EdgeState::Infeasible;
+    queue_.set(e, std::numeric_limits<double>::infinity());
+    return;
+  }
+  double cost = std::max(p.quadric(point.position), 0.0);
+  if (p.start) {
+    const Vec3 step = point.position - *p.start;
+    cost = std::max(p.quadric(*p.start) + std::max(step.dot(p.quadric.a * step), 0.0), 0.0);
+  }
+  edgeState_[e] = EdgeState::Solved;
+  edgePositions_[e] = p.origin + point.position;
+  queue_.set(e, cost);
+  solvedCosts_[e] = cost;
+  solvedAt_[e] = contractionCount_;
+  activeTriangles_[e] = {kNone, kNone, kNone};
+  activeKnown_[e] = point.activeCount >= 0;
+  for (int i = 0; i < point.activeCount; ++i) {
+    activeTriangles_[e][static_cast<std::size_t>(i)] =
+        halfSpaceTriangles_[static_cast<std::size_t>(point.active[static_cast<std::size_t>(i)])];
   }
 }
 
-BoundingMeshSimplifier::Outcome BoundingMeshSimplifier::contract(const Candidate& c) {
-  const std::uint32_t a = c.a, b = c.b;
+// A lower bound of edge e's exact cost after its planes changed. If none of the planes held as
+// equalities at its last optimum changed since, that optimum is still the optimum over the planes
+// that did not change (the KKT conditions involve only the active ones), and adding the changed
+// planes can only raise it: its cost (less a relative 10⁻⁷ for rounding) bounds the new one.
+// Otherwise the unconstrained minimum does.
+double BoundingMeshSimplifier::boundAfterChange(std::uint32_t e) const {
+  if (!activeKnown_[e]) return lowerBounds_[e];
+  for (const std::uint32_t t : activeTriangles_[e]) {
+    if (t != kNone && (!triangleAlive_[t] || triangleChangedAt_[t] > solvedAt_[e])) {
+      return lowerBounds_[e];
+    }
+  }
+  return std::max(lowerBounds_[e], solvedCosts_[e] * (1.0 - 1e-7) - costSlack_);
+}
+
+// Edge e's planes changed: its exact cost is no longer known, only a lower bound.
+void BoundingMeshSimplifier::invalidateEdge(std::uint32_t e) {
+  const EdgeState state = edgeState_[e];
+  if (state == EdgeState::Off || state == EdgeState::Parked) return;
+  if (!options_.lazyQueue) {
+    solveEdge(e);
+    return;
+  }
+  if (state == EdgeState::Infeasible) {
+    edgeState_[e] = EdgeState::Lower;
+    activeKnown_[e] = 0;
+    queue_.set(e, lowerBounds_[e]);
+    return;
+  }
+  const double bound = boundAfterChange(e);
+  if (state == EdgeState::Solved || bound < queue_.key(e)) {
+    edgeState_[e] = EdgeState::Lower;
+    queue_.set(e, bound);
+  }
+}
+
+void BoundingMeshSimplifier::park(std::uint32_t e) {
+  queue_.erase(e);
+  edgeState_[e] = EdgeState::Parked;
+  parkedVersions_[e] = versionsOf(e);
+  if (!edgeListed_[e]) {
+    edgeListed_[e] = 1;
+    parked_.push_back(e);
+  }
+}
+
+// Executes the contraction of Solved edge e unless it would break the mesh's topology or geometry
+// or make the new fan cross the mesh; then re-queues the edges whose cost it changed.
+BoundingMeshSimplifier::Outcome BoundingMeshSimplifier::contract(std::uint32_t e) {
+  const auto [a, b] = edgeEnds_[e];
+  const Contraction c{a, b, edgePositions_[e]};
   gatherFan(a, fanA_);
   gatherFan(b, fanB_);
-  const bool changed = versionsOf(a, b) != c.versions;
-  if (changed && !stillAboveFanPlanes(c)) return Outcome::Stale;
 
   // Topology: exactly two triangles on the edge, and the link condition (the only common
   // neighbours of a and b are the two vertices opposite the edge), or the mesh stops being
@@ -383,10 +481,13 @@ BoundingMeshSimplifier::Outcome BoundingMeshSimplifier::contract(const Candidate
   if (newFanCrossesMesh(c)) return Outcome::Crossing;
 
   // Execute: b merges into a at the new position.
+  ++contractionCount_;
+  retireMergedEdges(a, b);
   for (std::uint32_t t : fanA_) {
     if (contains(t, b)) {
       grid_->remove(t, boxes_[t]);
       triangleAlive_[t] = 0;
+      triangleChangedAt_[t] = contractionCount_;
       for (std::uint32_t w : triangles_[t]) --triangleCount_[w];
     }
   }
@@ -411,36 +512,70 @@ BoundingMeshSimplifier::Outcome BoundingMeshSimplifier::contract(const Candidate
   fanA_.clear();
   forEachTriangle(a, [&](std::uint32_t t) {
     updatePlane(t);
+    triangleChangedAt_[t] = contractionCount_;
     const Box3 box = boxOf(t);
     grid_->move(t, boxes_[t], box);
     boxes_[t] = box;
     fanA_.push_back(t);
   });
 
-  ++version_[a];
-  ++fanVersion_[a];
-  gatherNeighbours(a, neighbours_);
-  for (std::uint32_t w : neighbours_) ++version_[w];
-  // Re-queue the edges around the new vertex; its fan (in fanA_) is gathered once for all of them.
-  for (std::uint32_t w : neighbours_) {
-    if (vertexLocked_[w]) continue;
-    gatherFan(w, fanB_);
-    queueGathered(a, w);
-  }
+  requeueAround(a);
   return Outcome::Done;
 }
 
-// A candidate whose neighbourhood changed keeps its cost (the quadrics of a and b did not change)
-// and stays valid as long as its point is still on the kept side of every current plane around the
-// edge; only then does it need solving again. This spares most re-evaluations.
-bool BoundingMeshSimplifier::stillAboveFanPlanes(const Candidate& c) const {
-  const double sign = options_.side == BoundSide::Outer ? 1.0 : -1.0;
-  const auto above = [&](std::uint32_t t) {
-    return normals_[t] == Vec3::Zero() ||
-           sign * (normals_[t].dot(c.position) - offsets_[t]) >= -tolerance_;
+// Before b merges into a: edge (a, b) and, for each triangle (a, b, o) that collapses, edge (b, o)
+// disappear; the triangle across (b, o) takes over edge (a, o). fanA_ and fanB_ hold the fans.
+void BoundingMeshSimplifier::retireMergedEdges(std::uint32_t a, std::uint32_t b) {
+  const auto retire = [&](std::uint32_t e) {
+    queue_.erase(e);
+    edgeState_[e] = EdgeState::Off;
   };
-  return std::all_of(fanA_.begin(), fanA_.end(), above) &&
-         std::all_of(fanB_.begin(), fanB_.end(), above);
+  for (std::uint32_t t : fanA_) {
+    if (!contains(t, b)) continue;
+    std::uint32_t fromB = kNone, fromA = kNone;
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      const std::uint32_t u = triangles_[t][k], w = triangles_[t][(k + 1) % 3];
+      const std::uint32_t edge = cornerEdge_[3 * t + k];
+      if ((u == a && w == b) || (u == b && w == a)) {
+        retire(edge);
+      } else if (u == b || w == b) {
+        fromB = edge;
+      } else {
+        fromA = edge;
+      }
+    }
+    retire(fromB);
+    for (std::uint32_t u : fanB_) {
+      if (u == t || contains(u, a)) continue;
+      for (std::uint32_t k = 0; k < 3; ++k) {
+        if (cornerEdge_[3 * u + k] == fromB) cornerEdge_[3 * u + k] = fromA;
+      }
+    }
+  }
+}
+
+// After a contraction into a: the edges at a get a new quadric and are queued afresh; the other
+// edges at a's neighbours keep their quadrics, but their planes moved, so their exact costs are
+// invalidated (thesis Algorithm 2, "update the costs of the edges around the new vertex").
+void BoundingMeshSimplifier::requeueAround(std::uint32_t a) {
+  ++version_[a];
+  gatherNeighbours(a, neighbours_);
+  for (std::uint32_t w : neighbours_) ++version_[w];
+  for (std::uint32_t t : fanA_) {  // each edge (a, w) leaves a in exactly one triangle of its fan
+    const Triangle& tri = triangles_[t];
+    const std::uint32_t k = tri[0] == a ? 0 : (tri[1] == a ? 1 : 2);
+    const std::uint32_t e = cornerEdge_[3 * t + k], w = tri[(k + 1) % 3];
+    edgeEnds_[e] = {a, w};
+    if (!vertexLocked_[w]) queueEdge(e);
+  }
+  for (std::uint32_t w : neighbours_) {
+    if (vertexLocked_[w]) continue;
+    forEachTriangle(w, [&](std::uint32_t t) {
+      const Triangle& tri = triangles_[t];
+      const std::uint32_t k = tri[0] == w ? 0 : (tri[1] == w ? 1 : 2);
+      if (tri[(k + 1) % 3] != a) invalidateEdge(cornerEdge_[3 * t + k]);
+    });
+  }
 }
 
 // The new fan may not cross any other triangle of the mesh nor itself: this keeps outer results
@@ -448,7 +583,7 @@ bool BoundingMeshSimplifier::stillAboveFanPlanes(const Candidate& c) const {
 // Each pair whose boxes overlap is first given the cheap certificate certainlyApart (cached unit
 // normals and twice-areas); only the pairs it cannot clear reach the exact predicate, so the
 // verdict is the predicate's.
-bool BoundingMeshSimplifier::newFanCrossesMesh(const Candidate& c) {
+bool BoundingMeshSimplifier::newFanCrossesMesh(const Contraction& c) {
   const std::uint32_t a = c.a, b = c.b;
   ++stamp_;
   const std::uint32_t exclude = stamp_;
@@ -526,26 +661,20 @@ void BoundingMeshSimplifier::buildGrid(double cellSize) {
   verticesAtGridBuild_ = aliveVertices_;
 }
 
-// Drops candidates of dead vertices and superseded ones, which otherwise accumulate (every
-// contraction queues fresh candidates for the new vertex's edges) and dominate peak memory.
-void BoundingMeshSimplifier::purgeHeap() {
-  std::erase_if(heap_, [&](const Candidate& c) {
-    return !vertexAlive_[c.a] || !vertexAlive_[c.b] || fanVersionsOf(c.a, c.b) != c.fanVersions;
-  });
-  std::make_heap(heap_.begin(), heap_.end(), std::greater<>{});
-}
-
+// Re-queues the parked edges whose neighbourhood changed since they were parked.
 bool BoundingMeshSimplifier::revisitParked() {
   bool any = false;
   std::size_t kept = 0;
-  for (const Candidate& c : parked_) {
-    if (!vertexAlive_[c.a] || !vertexAlive_[c.b]) continue;
-    if (versionsOf(c.a, c.b) == c.versions) {
-      parked_[kept++] = c;  // nothing changed around it: still invalid
+  for (const std::uint32_t e : parked_) {
+    if (edgeState_[e] == EdgeState::Parked && versionsOf(e) == parkedVersions_[e]) {
+      parked_[kept++] = e;  // nothing changed around it: still rejected
       continue;
     }
-    queue(c.a, c.b);
-    any = true;
+    edgeListed_[e] = 0;
+    if (edgeState_[e] == EdgeState::Parked) {
+      queueEdge(e);
+      any = true;
+    }
   }
   parked_.resize(kept);
   return any;
@@ -575,7 +704,6 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
   vertexLocked_.assign(n, 0);
   vertexAlive_.assign(n, 1);
   version_.assign(n, 0);
-  fanVersion_.assign(n, 0);
   markA_.assign(n, 0);
   markB_.assign(n, 0);
   triangleAlive_.assign(triangles_.size(), 1);
@@ -586,8 +714,20 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
   crossLengths_.resize(triangles_.size());
 
   buildAdjacency();
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> interiorEdges;
+  std::vector<std::uint32_t> interiorEdges;
   classifyEdges(interiorEdges);
+  const std::size_t edgeCount = edgeEnds_.size();
+  edgeState_.assign(edgeCount, EdgeState::Off);
+  lowerBounds_.assign(edgeCount, 0.0);
+  edgePositions_.resize(edgeCount);
+  parkedVersions_.assign(edgeCount, 0);
+  edgeListed_.assign(edgeCount, 0);
+  solvedCosts_.assign(edgeCount, 0.0);
+  solvedAt_.assign(edgeCount, 0);
+  activeTriangles_.resize(edgeCount);
+  activeKnown_.assign(edgeCount, 0);
+  triangleChangedAt_.assign(triangles_.size(), 0);
+  queue_.reset(edgeCount);
   lockNonManifoldVertices();
   for (std::uint32_t t = 0; t < triangles_.size(); ++t) updatePlane(t);
   initQuadrics();
@@ -606,6 +746,7 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
   }
   const double diagonal = aliveVertices_ > 0 ? (hi - lo).norm() : 0.0;
   tolerance_ = 1e-12 * diagonal;
+  costSlack_ = 1e-10 * diagonal * diagonal;
   if (options_.mergeLength <= 0.0) options_.mergeLength = 0.01 * diagonal;
   stats_.inputVertices = aliveVertices_;
   double edgeLengthSum = 0.0;
@@ -616,63 +757,62 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
       std::max(2.0 * edgeLengthSum / std::max<double>(1.0, static_cast<double>(triangles_.size())),
                1e-9 * diagonal + 1e-300));
 
-  std::vector<Candidate> initial;
-  initial.reserve(interiorEdges.size());
-  for (const auto& [a, b] : interiorEdges) {
-    Candidate c;
-    if (vertexLocked_[a] || vertexLocked_[b]) continue;
-    if (evaluate(a, b, c)) {
-      initial.push_back(c);
-    } else {
-      ++stats_.rejectedInfeasible;
-    }
+  for (const std::uint32_t e : interiorEdges) {
+    if (!vertexLocked_[edgeEnds_[e][0]] && !vertexLocked_[edgeEnds_[e][1]]) queueEdge(e);
   }
-  heap_ = std::move(initial);
-  std::make_heap(heap_.begin(), heap_.end(), std::greater<>{});
 
+  // Algorithm 2 with a lazy queue. Every queued edge's key is at most its exact cost (the
+  // constrained minimum is at least the unconstrained one), and a popped edge is solved first if it
+  // is not yet: it is contracted only once it is the least by exact cost. So edges are taken in
+  // exactly the order of a queue holding every exact cost (options_.lazyQueue = false), ties broken
+  // by edge id.
   const std::size_t target = options_.targetVertices;
   const double maxCost = options_.maxError * options_.maxError;
   const std::size_t toRemove = aliveVertices_ > target ? aliveVertices_ - target : 0;
   double worstCost = 0.0;
   while (aliveVertices_ > target) {
-    if (heap_.empty() && !revisitParked()) break;
-    if (heap_.empty()) continue;
-    if (heap_.size() > 12 * aliveVertices_) purgeHeap();
-    std::pop_heap(heap_.begin(), heap_.end(), std::greater<>{});
-    const Candidate c = heap_.back();
-    heap_.pop_back();
-    if (!vertexAlive_[c.a] || !vertexAlive_[c.b]) continue;
-    if (fanVersionsOf(c.a, c.b) != c.fanVersions) continue;  // superseded
-    if (c.cost > maxCost) {
-      parked_.push_back(c);
+    if (queue_.empty()) {
+      if (!revisitParked()) break;
+      continue;
+    }
+    const std::uint32_t e = queue_.top();
+    const double cost = queue_.topKey();
+    if (cost > maxCost) {  // every queued exact cost is at least this: none may be contracted
+      park(e);
+      continue;
+    }
+    if (edgeState_[e] == EdgeState::Lower) {
+      solveEdge(e);
+      continue;
+    }
+    if (edgeState_[e] == EdgeState::Infeasible) {
+      ++stats_.rejectedInfeasible;
+      park(e);
       continue;
     }
     if (aliveVertices_ * 2 < verticesAtGridBuild_) {
       buildGrid(grid_->cellSize() * std::sqrt(2.0));  // triangles grew: coarser cells
     }
-    switch (contract(c)) {
+    switch (contract(e)) {
       case Outcome::Done:
         ++stats_.contractions;
-        worstCost = std::max(worstCost, c.cost);
+        worstCost = std::max(worstCost, cost);
         if (options_.progress && stats_.contractions % 8192 == 0 && toRemove > 0) {
           options_.progress(static_cast<double>(stats_.contractions) /
                             static_cast<double>(toRemove));
         }
         break;
-      case Outcome::Stale:
-        queueGathered(c.a, c.b);  // contract() left the fans of a and b in fanA_ and fanB_
-        break;
       case Outcome::Topology:
         ++stats_.rejectedTopology;
-        parked_.push_back(c);
+        park(e);
         break;
       case Outcome::Geometry:
         ++stats_.rejectedGeometry;
-        parked_.push_back(c);
+        park(e);
         break;
       case Outcome::Crossing:
         ++stats_.rejectedCrossing;
-        parked_.push_back(c);
+        park(e);
         break;
     }
   }

@@ -29,6 +29,9 @@ struct BoundingMeshOptions {
   ContractionCost cost = ContractionCost::Planes;
   QuadricMerge merge = QuadricMerge::Constant;
   double mergeLength = 0.0;  // l of Eq. 4.7 for QuadricMerge::Full; 0 → 1% of the diagonal
+  // Solve an edge's constrained problem only when it reaches the top of the queue. The result is
+  // identical either way; false (solve every queued edge at once) is the reference it is tested on.
+  bool lazyQueue = true;
   // Called now and then with the fraction of the work done (0..1).
   std::function<void(double)> progress;
 };
