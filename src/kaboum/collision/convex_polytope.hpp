@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -14,6 +15,30 @@
 #include "kaboum/geometry/convex_hull.hpp"
 
 namespace kaboum::collision {
+
+// Eight vertices' coordinates side by side, the unit of the vectorised support scan (one
+// AVX-512 register per coordinate).
+inline constexpr std::size_t kLaneWidth = 8;
+struct alignas(64) VertexChunk {
+  std::array<double, kLaneWidth> x, y, z;
+};
+
+namespace detail {
+// The first vertex of `chunkCount` chunks (padded as ConvexPolytope's) maximising direction.x:
+// a scalar loop (any x86-64), and branch-free AVX-512 lanes (only where the CPU has AVX-512F).
+std::uint32_t scanVertexChunksScalar(const VertexChunk* chunks, std::size_t chunkCount,
+                                     const Vec3& direction);
+[[gnu::target("avx512f")]] std::uint32_t scanVertexChunksAvx512(const VertexChunk* chunks,
+                                                                std::size_t chunkCount,
+                                                                const Vec3& direction);
+// One of the two, chosen for the CPU once (GCC function multiversioning, an ifunc).
+[[gnu::target("default")]] std::uint32_t scanVertexChunks(const VertexChunk* chunks,
+                                                          std::size_t chunkCount,
+                                                          const Vec3& direction);
+[[gnu::target("avx512f")]] std::uint32_t scanVertexChunks(const VertexChunk* chunks,
+                                                          std::size_t chunkCount,
+                                                          const Vec3& direction);
+}  // namespace detail
 
 // The convex hull of a point set in its own (local) frame. Satisfies SupportMapping.
 static_assert(sizeof(Vec3) == 3 * sizeof(double), "support loops read vertices as packed doubles");
@@ -39,7 +64,10 @@ class ConvexPolytope {
 
   // A vertex maximising direction.x; ties go to the first one found.
   [[nodiscard]] Vec3 support(const Vec3& direction, Hint& hint) const {
-    return vertices_[supportIndex(direction, hint)];
+    const std::uint32_t index = supportIndex(direction, hint);
+    const VertexChunk& chunk = chunks_[index / kLaneWidth];
+    const std::uint32_t lane = index % kLaneWidth;
+    return {chunk.x[lane], chunk.y[lane], chunk.z[lane]};
   }
   // Index of that vertex (also stored in `hint`).
   [[nodiscard]] std::uint32_t supportIndex(const Vec3& direction, Hint& hint) const;
@@ -48,6 +76,8 @@ class ConvexPolytope {
 
   [[nodiscard]] const std::vector<Vec3>& vertices() const { return vertices_; }
   [[nodiscard]] std::size_t vertexCount() const { return vertices_.size(); }
+  // The vertices in the support scan's layout (chunks of kLaneWidth, the last padded).
+  [[nodiscard]] std::span<const VertexChunk> chunks() const { return chunks_; }
   // Vertices sharing a hull edge with vertex `index`.
   [[nodiscard]] std::span<const std::uint32_t> neighbors(std::uint32_t index) const {
     return {neighbors_.data() + neighborBegin_[index],
@@ -69,9 +99,11 @@ class ConvexPolytope {
   std::uint32_t bestSeed(const Vec3& direction) const;
   std::uint32_t scan(const Vec3& direction) const;
 
-  // Eigen::Vector3d is three unpadded doubles, so the support loops read these as packed
-  // x y z x y z ... (one copy of the coordinates: the workload is often cache-cold).
+  // The vertices as given by the hull (climbing reads these as packed x y z x y z ...).
   std::vector<Vec3> vertices_;
+  // The same coordinates in chunks of kLaneWidth (the last padded with copies of vertex 0, which
+  // never win a tie against it): what scan() and support() read.
+  std::vector<VertexChunk> chunks_;
   // Compressed adjacency: neighbors of vertex i are neighbors_[neighborBegin_[i] ..
   // neighborBegin_[i+1]).
   std::vector<std::uint32_t> neighborBegin_;
@@ -113,21 +145,7 @@ inline std::uint32_t ConvexPolytope::bestSeed(const Vec3& direction) const {
 }
 
 inline std::uint32_t ConvexPolytope::scan(const Vec3& direction) const {
-  const double dx = direction.x();
-  const double dy = direction.y();
-  const double dz = direction.z();
-  const double* p = vertices_.front().data();
-  std::uint32_t best = 0;
-  double bestDot = dx * p[0] + dy * p[1] + dz * p[2];
-  const auto n = static_cast<std::uint32_t>(vertices_.size());
-  for (std::uint32_t i = 1; i < n; ++i) {
-    const double d = dx * p[3 * i] + dy * p[3 * i + 1] + dz * p[3 * i + 2];
-    if (d > bestDot) {
-      bestDot = d;
-      best = i;
-    }
-  }
-  return best;
+  return detail::scanVertexChunks(chunks_.data(), chunks_.size(), direction);
 }
 
 // Steepest ascent on the edge graph: on a convex polytope a vertex no neighbor improves on is a
@@ -172,14 +190,16 @@ class TransformedSupport {
     const Vec3 local(r(0, 0) * d.x() + r(1, 0) * d.y() + r(2, 0) * d.z(),
                      r(0, 1) * d.x() + r(1, 1) * d.y() + r(2, 1) * d.z(),
                      r(0, 2) * d.x() + r(1, 2) * d.y() + r(2, 2) * d.z());
-    const Vec3& p = polytope_->support(local, hint);
+    return place(polytope_->support(local, hint));
+  }
+  [[nodiscard]] Vec3 center() const { return place(polytope_->center()); }
+  // A point of the polytope's local frame, placed (written out, as support()).
+  [[nodiscard]] Vec3 place(const Vec3& p) const {
+    const Eigen::Matrix3d& r = rotation_;
     return {r(0, 0) * p.x() + r(0, 1) * p.y() + r(0, 2) * p.z() + translation_.x(),
             r(1, 0) * p.x() + r(1, 1) * p.y() + r(1, 2) * p.z() + translation_.y(),
             r(2, 0) * p.x() + r(2, 1) * p.y() + r(2, 2) * p.z() + translation_.z()};
   }
-  [[nodiscard]] Vec3 center() const { return place(polytope_->center()); }
-  // A point of the polytope's local frame, placed.
-  [[nodiscard]] Vec3 place(const Vec3& local) const { return rotation_ * local + translation_; }
 
   [[nodiscard]] const ConvexPolytope& polytope() const { return *polytope_; }
   [[nodiscard]] const Eigen::Matrix3d& rotation() const { return rotation_; }
@@ -194,25 +214,46 @@ class TransformedSupport {
 static_assert(SupportMapping<ConvexPolytope>);
 static_assert(SupportMapping<TransformedSupport>);
 
+namespace detail {
+
+// sphereVerdict() with each polytope's sphere centres placed into a common frame by `placeA`
+// and `placeB` (callables Vec3 -> Vec3); the inner balls are only placed when needed.
+template <class PlaceA, class PlaceB>
+PairVerdict sphereVerdict(const ConvexPolytope& a, const PlaceA& placeA, const ConvexPolytope& b,
+                          const PlaceB& placeB, double margin, const GjkTolerance& tolerance) {
+  const double outerReach =
+      a.boundingSphereRadius() + b.boundingSphereRadius() + margin + tolerance.absolute;
+  if ((placeB(b.boundingSphereCenter()) - placeA(a.boundingSphereCenter())).squaredNorm() >
+      outerReach * outerReach) {
+    return PairVerdict::separated;
+  }
+  const double innerReach = a.innerSphereRadius() + b.innerSphereRadius() + margin;
+  if ((placeB(b.innerSphereCenter()) - placeA(a.innerSphereCenter())).squaredNorm() <=
+      innerReach * innerReach) {
+    return PairVerdict::intersecting;
+  }
+  return PairVerdict::unknown;
+}
+
+}  // namespace detail
+
 // Conservative pre-test of a pair from the polytopes' spheres, with b placed in a's frame (the
 // frame of a's vertices): `separated` when the bounding spheres are more than margin +
 // tolerance.absolute apart (the distance is at least their gap), `intersecting` when the inner
 // balls come within margin (they lie inside the polytopes), `unknown` otherwise.
 inline PairVerdict sphereVerdict(const ConvexPolytope& a, const TransformedSupport& b,
                                  double margin = 0.0, const GjkTolerance& tolerance = {}) {
-  const ConvexPolytope& polytopeB = b.polytope();
-  const double outerReach =
-      a.boundingSphereRadius() + polytopeB.boundingSphereRadius() + margin + tolerance.absolute;
-  if ((b.place(polytopeB.boundingSphereCenter()) - a.boundingSphereCenter()).squaredNorm() >
-      outerReach * outerReach) {
-    return PairVerdict::separated;
-  }
-  const double innerReach = a.innerSphereRadius() + polytopeB.innerSphereRadius() + margin;
-  if ((b.place(polytopeB.innerSphereCenter()) - a.innerSphereCenter()).squaredNorm() <=
-      innerReach * innerReach) {
-    return PairVerdict::intersecting;
-  }
-  return PairVerdict::unknown;
+  return detail::sphereVerdict(
+      a, [](const Vec3& p) { return p; }, b.polytope(), [&b](const Vec3& p) { return b.place(p); },
+      margin, tolerance);
+}
+
+// The same with both polytopes placed (in world frame: no relative pose needed).
+inline PairVerdict sphereVerdict(const TransformedSupport& a, const TransformedSupport& b,
+                                 double margin = 0.0, const GjkTolerance& tolerance = {}) {
+  return detail::sphereVerdict(
+      a.polytope(), [&a](const Vec3& p) { return a.place(p); }, b.polytope(),
+      [&b](const Vec3& p) { return b.place(p); }, margin, tolerance);
 }
 
 // The pair queries of gjk.hpp for a polytope in its own frame and one placed in that frame,
@@ -249,9 +290,21 @@ inline DistanceResult distance(const ConvexPolytope& a, const TransformedSupport
 // direction in a's frame (use one cache with one overload family per pair).
 namespace detail {
 
+// Written out: Eigen's small products are not all inlined at -O2 (200 instructions here).
 inline TransformedSupport inFrameOf(const TransformedSupport& a, const TransformedSupport& b) {
-  const Eigen::Matrix3d toA = a.rotation().transpose();
-  return {b.polytope(), toA * b.rotation(), toA * (b.translation() - a.translation())};
+  const Eigen::Matrix3d& ra = a.rotation();
+  const Eigen::Matrix3d& rb = b.rotation();
+  Eigen::Matrix3d rotation;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      rotation(i, j) = ra(0, i) * rb(0, j) + ra(1, i) * rb(1, j) + ra(2, i) * rb(2, j);
+    }
+  }
+  const Vec3 t = b.translation() - a.translation();
+  const Vec3 translation(ra(0, 0) * t.x() + ra(1, 0) * t.y() + ra(2, 0) * t.z(),
+                         ra(0, 1) * t.x() + ra(1, 1) * t.y() + ra(2, 1) * t.z(),
+                         ra(0, 2) * t.x() + ra(1, 2) * t.y() + ra(2, 2) * t.z());
+  return {b.polytope(), rotation, translation};
 }
 
 using PlacedPairCache = GjkCache<TransformedSupport, TransformedSupport>;
@@ -270,12 +323,17 @@ auto withLocalCache(PlacedPairCache* cache, Query&& query) {
 
 }  // namespace detail
 
+// The sphere pre-tests run on the world-frame centres first: the relative pose is only formed
+// for the pairs they leave undecided.
 inline bool intersects(const TransformedSupport& a, const TransformedSupport& b,
                        double margin = 0.0, detail::PlacedPairCache* cache = nullptr,
                        const GjkTolerance& tolerance = {}) {
+  const PairVerdict verdict = sphereVerdict(a, b, margin, tolerance);
+  if (verdict != PairVerdict::unknown) return verdict == PairVerdict::intersecting;
   const TransformedSupport bInA = detail::inFrameOf(a, b);
   return detail::withLocalCache(cache, [&](detail::LocalPairCache* local) {
-    return intersects(a.polytope(), bInA, margin, local, tolerance);
+    return intersects<ConvexPolytope, TransformedSupport>(a.polytope(), bInA, margin, local,
+                                                          tolerance);
   });
 }
 
