@@ -78,7 +78,7 @@ TEST(BoundCli, CheckRejectsAnInsideOutResult) {
   EXPECT_FALSE(j["verified"].get<bool>());
 }
 
-// The issue's promise: at 1% of the diagonal, closed inputs above 10^4 vertices shrink at least 10x.
+// Issue 2's promise: at 1% of the diagonal, closed inputs above 10^4 vertices shrink 10x.
 TEST(BoundCli, EpsilonIsADistanceInPercentOfTheDiagonal) {
   ScratchDir dir;
   const CliResult r = runCli(dir, "bound " + quotedMesh("rocker-arm.obj") + " -o '" +
