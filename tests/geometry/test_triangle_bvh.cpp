@@ -157,6 +157,22 @@ TEST(TriangleBvh, ClosestMatchesBruteForce) {
   }
 }
 
+// hasTriangleWithin(p, r) must agree with closest(p).distance <= r bit for bit, including at
+// r equal to that distance and one rounding step either side of it.
+TEST(TriangleBvh, HasTriangleWithinAgreesWithClosest) {
+  for (const auto& [name, mesh] : closedShapes()) {
+    SCOPED_TRACE(name);
+    const TriangleBvh bvh(mesh);
+    for (const Vec3& p : queryPoints(mesh, 300, 5)) {
+      const double d = bvh.closest(p).distance;
+      for (const double r : {0.0, 0.5 * d, std::nextafter(d, 0.0), d,
+                             std::nextafter(d, std::numeric_limits<double>::infinity()), 2.0 * d}) {
+        ASSERT_EQ(bvh.hasTriangleWithin(p, r), d <= r) << "r = " << r << ", distance " << d;
+      }
+    }
+  }
+}
+
 TEST(TriangleBvh, ClosestOfASurfacePointIsItself) {
   const TriangleMesh mesh = makeTorus(1.0, 0.3, 24, 12);
   const TriangleBvh bvh(mesh);

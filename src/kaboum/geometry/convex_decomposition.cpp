@@ -65,8 +65,7 @@ struct Farthest {
 // The solid enclosed by the closed bound: inside tests and distances to its surface.
 class Solid {
  public:
-  Solid(const TriangleMesh& surface, double tolerance)
-      : surface_(surface), bvh_(surface), tolerance_(tolerance) {}
+  Solid(const TriangleMesh& surface, double tolerance) : bvh_(surface), tolerance_(tolerance) {}
 
   // Inside, or on the surface up to the tolerance (a corner there is kept, which is harmless).
   [[nodiscard]] bool contains(const Vec3& p) const {
@@ -82,7 +81,7 @@ class Solid {
     Farthest result;
     if (!samples.empty()) result.where = samples.front();
     for (const Vec3& p : samples) {
-      if (hasTriangleWithin(p, result.distance)) continue;
+      if (bvh_.hasTriangleWithin(p, result.distance)) continue;
       const double d = bvh_.closest(p).distance;
       if (d > result.distance && !bvh_.contains(p)) {
         result.distance = d;
@@ -97,22 +96,6 @@ class Solid {
   }
 
  private:
-  // Some triangle is within `radius` of p, by the same arithmetic as TriangleBvh::closest (so
-  // this is false exactly when closest(p).distance > radius).
-  [[nodiscard]] bool hasTriangleWithin(const Vec3& p, double radius) const {
-    const Vec3 reach = Vec3::Constant(radius + tolerance_);
-    bool found = false;
-    bvh_.forEachTriangleOverlapping(p - reach, p + reach, [&](std::uint32_t t) {
-      const Triangle& tri = surface_.triangles[t];
-      const Vec3 c = closestPointOnTriangle(p, surface_.vertices[tri[0]], surface_.vertices[tri[1]],
-                                            surface_.vertices[tri[2]]);
-      found = std::sqrt((c - p).squaredNorm()) <= radius;
-      return !found;
-    });
-    return found;
-  }
-
-  const TriangleMesh& surface_;
   TriangleBvh bvh_;
   double tolerance_;
 };

@@ -517,6 +517,20 @@ TriangleBvh::Closest TriangleBvh::closest(const Vec3& query) const {
   return best;
 }
 
+bool TriangleBvh::hasTriangleWithin(const Vec3& query, double radius) const {
+  // Node boxes are padded by padding_, so the box around the ball cannot miss by rounding.
+  const Vec3 reach = Vec3::Constant(radius);
+  bool found = false;
+  forEachSlotOverlapping(query - reach, query + reach, [&](std::uint32_t slot) {
+    const Triangle& tri = triangles_[slot];
+    const Vec3 point =
+        closestPointOnTriangle(query, vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]);
+    found = std::sqrt((point - query).squaredNorm()) <= radius;
+    return !found;
+  });
+  return found;
+}
+
 std::span<const Vec3> TriangleBvh::insideTestDirections() {
   static const std::array<Vec3, 9> directions = [] {
     std::array<Vec3, 9> unit{Vec3(0.6204, 0.3592, 0.6972),   Vec3(-0.3172, 0.8447, -0.4311),
