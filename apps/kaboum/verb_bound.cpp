@@ -44,9 +44,22 @@ int runBound(const BoundArgs& args) {
     options.targetVertices =
         static_cast<std::size_t>(std::ceil(args.ratio * static_cast<double>(mesh.vertices.size())));
   }
+  // An --epsilon search simplifies several times (copying the options for each run); each run gets
+  // its own numbered line.
+  int run = 0;
+  bool runFinished = true;
   if (!args.quiet) {
-    options.progress = [](double fraction) {
-      std::cerr << fmt::format("\rbound: {:3.0f}%", 100.0 * std::min(fraction, 1.0)) << std::flush;
+    const bool numbered = !args.epsilon.empty();
+    options.progress = [numbered, &run, &runFinished](double fraction) {
+      if (runFinished) {
+        if (run > 0) std::cerr << "\n";
+        ++run;
+      }
+      runFinished = fraction >= 1.0;
+      const double percent = 100.0 * std::min(fraction, 1.0);
+      std::cerr << (numbered ? fmt::format("\rbound run {}: {:3.0f}%", run, percent)
+                             : fmt::format("\rbound: {:3.0f}%", percent))
+                << std::flush;
     };
   }
 

@@ -1,5 +1,6 @@
 // `kaboum bound` and `kaboum check` as users run them: outputs, JSON fields, exit codes, and one
 // clear line with exit code 2 for every class of bad input.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -89,6 +90,24 @@ TEST(BoundCli, EpsilonIsADistanceInPercentOfTheDiagonal) {
   EXPECT_LE(j["hausdorff"]["result_to_original"]["max_percent_of_diagonal"].get<double>(), 1.0);
   ASSERT_GT(j["input_vertices"].get<int>(), 10000);
   EXPECT_LT(j["output_vertices"].get<int>() * 10, j["input_vertices"].get<int>());
+}
+
+// An --epsilon search simplifies several times: stderr shows one numbered progress line per run.
+TEST(BoundCli, EpsilonSearchShowsOneProgressLinePerRun) {
+  ScratchDir dir;
+  const CliResult r = runCli(dir, "bound " + quotedMesh("kr5-wrist.stl") + " -o '" +
+                                      dir.file("w.obj") + "' --epsilon 2% --json");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const int runs = nlohmann::json::parse(r.out)["runs"].get<int>();
+  ASSERT_GT(runs, 1);
+  std::istringstream lines(r.err);
+  std::string line;
+  int seen = 0;
+  while (std::getline(lines, line)) {
+    ++seen;
+    EXPECT_TRUE(line.ends_with(fmt::format("bound run {}: 100%", seen))) << line;
+  }
+  EXPECT_EQ(seen, runs) << r.err;
 }
 
 TEST(BoundCli, OpenInputsAreSimplifiedAndCheckSaysContainmentIsUndefined) {
