@@ -10,6 +10,7 @@
 
 #include "kaboum/geometry/bounding_mesh.hpp"
 #include "kaboum/geometry/subdivision.hpp"
+#include "kaboum/geometry/test_shapes.hpp"
 #include "kaboum/io/mesh_io.hpp"
 
 // GCC cannot see that the replaced operator new below pairs with the replaced delete.
@@ -87,6 +88,33 @@ void BoundOuterTenPercent(benchmark::State& state) {
 }
 BENCHMARK(BoundOuterTenPercent)
     ->DenseRange(0, 4)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1)
+    ->Repetitions(3)
+    ->ReportAggregatesOnly(true);
+
+// Issue 2's "no pathological slow case": the same number of contractions (2,000, taken off the
+// rim) next to two vertices of valence `range(0)` (makeDoubleCone).
+void BoundNextToHighValence(benchmark::State& state) {
+  const kaboum::TriangleMesh mesh = kaboum::makeDoubleCone(static_cast<int>(state.range(0)));
+  kaboum::BoundingMeshOptions options;
+  options.targetVertices = mesh.vertices.size() - 2000;
+  std::size_t contractions = 0;
+  double seconds = 0.0;
+  for (auto _ : state) {
+    const kaboum::BoundingMeshResult result = kaboum::simplifyBounding(mesh, options);
+    contractions = result.stats.contractions;
+    seconds = result.stats.seconds;
+    benchmark::DoNotOptimize(result.mesh.triangles.data());
+  }
+  state.counters["apex_valence"] = static_cast<double>(state.range(0));
+  state.counters["contractions_per_second"] = static_cast<double>(contractions) / seconds;
+}
+BENCHMARK(BoundNextToHighValence)
+    ->Arg(2500)
+    ->Arg(5000)
+    ->Arg(10000)
+    ->Arg(20000)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1)
     ->Repetitions(3)

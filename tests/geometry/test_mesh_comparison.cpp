@@ -76,9 +76,12 @@ TEST(TestShapes, AreClosedOutwardAndOfTheExpectedVolume) {
   const double torus = 2.0 * std::numbers::pi * std::numbers::pi * 0.09;  // 2 pi^2 R r^2
   EXPECT_LT(signedVolume(makeTorus(1.0, 0.3, 64, 32)), torus);
   EXPECT_GT(signedVolume(makeTorus(1.0, 0.3, 64, 32)), 0.99 * torus);
+  // Two cones of height 1 on a regular 64-gon of circumradius 1: 2/3 of the polygon's area.
+  EXPECT_NEAR(signedVolume(makeDoubleCone(64)),
+              2.0 / 3.0 * 32.0 * std::sin(2.0 * std::numbers::pi / 64.0), 1e-12);
   EXPECT_LT(signedVolume(flipMesh(makeIcosphere(1))), 0.0);
   for (const TriangleMesh& closed : {makeIcosphere(2), makeTorus(1.0, 0.3, 12, 6), makeLPrism(),
-                                     makeBox(Vec3::Zero(), Vec3::Ones(), 2)}) {
+                                     makeBox(Vec3::Zero(), Vec3::Ones(), 2), makeDoubleCone(16)}) {
     EXPECT_TRUE(verifyContainment(closed, closed, BoundSide::Outer, 10, 1).defined);
   }
 }

@@ -160,6 +160,22 @@ TriangleMesh makeLPrism(double height) {
   return mesh;
 }
 
+TriangleMesh makeDoubleCone(int rimVertices) {
+  TriangleMesh mesh;
+  mesh.vertices = {Vec3(0, 0, 1), Vec3(0, 0, -1)};
+  const std::uint32_t n = toIndex(static_cast<std::size_t>(rimVertices));
+  for (std::uint32_t k = 0; k < n; ++k) {
+    const double angle = 2.0 * std::numbers::pi * k / n;
+    mesh.vertices.emplace_back(std::cos(angle), std::sin(angle), 0.0);
+  }
+  for (std::uint32_t k = 0; k < n; ++k) {
+    const std::uint32_t here = 2 + k, next = 2 + (k + 1) % n;
+    mesh.triangles.push_back({0, here, next});
+    mesh.triangles.push_back({1, next, here});
+  }
+  return mesh;
+}
+
 TriangleMesh transformMesh(const TriangleMesh& mesh, double scale, const Vec3& center,
                            const Vec3& offset) {
   TriangleMesh result = mesh;

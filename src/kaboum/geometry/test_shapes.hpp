@@ -26,6 +26,10 @@ TriangleMesh makeTorus(double majorRadius, double minorRadius, int majorSegments
 // `height`. Star-shaped with respect to every point of [0,1]^2 x [0,height]. Volume 3 * height.
 TriangleMesh makeLPrism(double height = 1.0);
 
+// Two cones on a regular `rimVertices`-gon of circumradius 1 in the plane z = 0, apexes at z = ±1:
+// each apex has valence `rimVertices` (the high-valence case of the bounding mesh benchmark).
+TriangleMesh makeDoubleCone(int rimVertices);
+
 // Every vertex mapped to center + scale * (v - center) + offset.
 TriangleMesh transformMesh(const TriangleMesh& mesh, double scale, const Vec3& center,
                            const Vec3& offset = Vec3::Zero());
