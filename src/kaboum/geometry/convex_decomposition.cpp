@@ -73,12 +73,18 @@ class Solid {
   }
   [[nodiscard]] Vec3 closestPoint(const Vec3& p) const { return bvh_.closest(p).point; }
 
-  // Largest distance to the solid over `samples` (0 for samples inside), stopping as soon as it
-  // reaches `stopAt`. A sample only matters when it is farther than the largest distance so far,
-  // so most samples are settled by finding one triangle that close instead of the closest one;
-  // the result is bit for bit the one of a closest-point query per sample.
-  [[nodiscard]] Farthest largestDistance(const std::vector<Vec3>& samples, double stopAt) const {
+  // Largest distance to the solid over `samples` and `atLeast` (0 for samples inside), stopping as
+  // soon as it reaches `stopAt`. A sample only matters when it is farther than the largest distance
+  // so far, so most samples are settled by finding one triangle that close instead of the closest
+  // one; the result is bit for bit the one of a closest-point query per sample.
+  [[nodiscard]] Farthest largestDistance(const std::vector<Vec3>& samples, double stopAt,
+                                         double atLeast = 0.0) const {
     Farthest result;
+    result.distance = atLeast;
+    if (atLeast >= stopAt) {
+      result.complete = false;
+      return result;
+    }
     if (!samples.empty()) result.where = samples.front();
     for (const Vec3& p : samples) {
       if (bvh_.hasTriangleWithin(p, result.distance)) continue;
@@ -326,9 +332,10 @@ void runTasks(WorkSharing* sharing, std::size_t count,
 struct Context {
   WorkSharing* sharing;  // nothing when decomposing one mesh alone
   const Solid& solid;
-  double tolerance;  // geometric tolerance, a tiny fraction of the diagonal
-  double snap;       // largest distance a hull may lose points by (see buildHull)
-  std::size_t samples;
+  double tolerance;           // geometric tolerance, a tiny fraction of the diagonal
+  double snap;                // largest distance a hull may lose points by (see buildHull)
+  std::size_t samples;        // random samples per hull for its concavity
+  std::size_t bridgeSamples;  // random samples on the bridge of a merged hull
   std::uint64_t seed;
 };
 
@@ -341,6 +348,43 @@ bool measureConcavity(Cell& cell, const Context& context, std::uint64_t salt,
   const Farthest farthest = context.solid.largestDistance(samples, stopAt);
   cell.concavity = farthest.distance;
   cell.worstPoint = farthest.where;
+  return farthest.complete;
+}
+
+// The triangles of the merged hull of pieces a and b that bridge them: those whose corners are not
+// all vertices of one part (a triangle spanned by one part's vertices lies in that part's hull).
+TriangleMesh bridgeTriangles(const Cell& merged, const Cell& a, const Cell& b) {
+  const auto sorted = [](const Cell& c) {
+    std::vector<Vec3> points = c.hull.mesh.vertices;
+    std::sort(points.begin(), points.end(), lexicographicLess);
+    return points;
+  };
+  const std::vector<Vec3> first = sorted(a), second = sorted(b);
+  const auto allIn = [&](const std::vector<Vec3>& part, const Triangle& t) {
+    return std::all_of(t.begin(), t.end(), [&](std::uint32_t v) {
+      return std::binary_search(part.begin(), part.end(), merged.hull.mesh.vertices[v],
+                                lexicographicLess);
+    });
+  };
+  TriangleMesh bridge;
+  bridge.vertices = merged.hull.mesh.vertices;
+  for (const Triangle& t : merged.hull.mesh.triangles) {
+    if (!allIn(first, t) && !allIn(second, t)) bridge.triangles.push_back(t);
+  }
+  return bridge;
+}
+
+// The concavity of the merged hull of pieces a and b: the larger of theirs and of the samples of
+// the bridge between them (every random sample goes where the merge adds concavity, so a narrow
+// gap between the parts is rarely missed). Stops like measureConcavity.
+bool measureMergedConcavity(Cell& merged, const Cell& a, const Cell& b, const Context& context,
+                            std::uint64_t salt, double stopAt) {
+  const std::vector<Vec3> samples = sampleSurface(
+      bridgeTriangles(merged, a, b), context.bridgeSamples, context.seed * 1000003u + salt);
+  const Farthest farthest =
+      context.solid.largestDistance(samples, stopAt, std::max(a.concavity, b.concavity));
+  merged.concavity = farthest.distance;
+  merged.worstPoint = farthest.where;
   return farthest.complete;
 }
 
@@ -533,7 +577,9 @@ std::size_t mergeNeighbours(std::vector<Cell>& cells, std::size_t maxPieces, dou
     pair = Pair{};
     if (!boxesTouch(cells[i], cells[j], tolerance)) return;
     pair.merged = mergedCell(cells[i], cells[j], context.snap);
-    if (pair.merged) pair.salt = measured++;
+    if (!pair.merged) return;
+    pair.salt = measured++;
+    pair.merged->concavity = std::max(cells[i].concavity, cells[j].concavity);  // a lower bound
   };
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = i + 1; j < n; ++j) price(i, j);
@@ -552,8 +598,9 @@ std::size_t mergeNeighbours(std::vector<Cell>& cells, std::size_t maxPieces, dou
                                                 : pairs[best].merged->concavity;
       if (bound == pairs.size() || pairs[bound].merged->concavity > limit) return best;
       Pair& pair = pairs[bound];
-      pair.exact = measureConcavity(*pair.merged, context, pair.salt,
-                                    std::nextafter(limit, std::numeric_limits<double>::infinity()));
+      pair.exact = measureMergedConcavity(
+          *pair.merged, cells[bound / n], cells[bound % n], context, pair.salt,
+          std::nextafter(limit, std::numeric_limits<double>::infinity()));
     }
   };
   std::size_t count = n, merges = 0;
@@ -770,8 +817,13 @@ Decomposition decomposeSharing(const TriangleMesh& mesh, const DecompositionOpti
 
   // Step 2: hierarchical plane splits, the worst concavity first.
   const Solid solid(bound, 1e-9 * stats.diagonal);
-  const Context context{
-      sharing, solid, tolerance, 1e-8 * stats.diagonal, options.concavitySamples, options.seed};
+  const Context context{sharing,
+                        solid,
+                        tolerance,
+                        1e-8 * stats.diagonal,
+                        options.concavitySamples,
+                        options.bridgeSamples,
+                        options.seed};
   const double concavityBudget = kConcavityShare * stats.epsilon;
   Cell root;
   for (const Triangle& t : bound.triangles) {

@@ -23,6 +23,9 @@ struct DecompositionOptions {
   // Random surface samples of every candidate piece's hull for its concavity (plus its vertices
   // and edge midpoints).
   std::size_t concavitySamples = 600;
+  // Random samples of the bridge between two pieces when their merge is priced (the merged hull's
+  // triangles not spanned by one piece's vertices; plus their vertices and edge midpoints).
+  std::size_t bridgeSamples = 2000;
   std::uint64_t seed = 1;
 };
 
