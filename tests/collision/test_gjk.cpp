@@ -144,8 +144,9 @@ void checkVerdict(PairVerdict verdict, double truth, double margin, Tally& tally
 }
 
 // The public queries (checkPair); the two conservative tests they start with, each on its own
-// (sphereVerdict() and portalIntersects() in a's frame); and, for pairs the scan handles, both
-// builds of the placed queries (scalar, and AVX-512 where the CPU has it) whatever this CPU picks.
+// (sphereVerdict() and portalIntersects() in a's frame); and, for pairs the scan handles, every
+// build of the placed queries (scalar, and AVX2 / AVX-512 where the CPU has them), whatever this
+// CPU picks.
 void checkPolytopePair(const PolytopePair& pair, Tally& tally, const std::string& label) {
   const ConvexPolytope polytopeA(pair.localA);
   const ConvexPolytope polytopeB(pair.localB);
@@ -175,6 +176,16 @@ void checkPolytopePair(const PolytopePair& pair, Tally& tally, const std::string
           return inWorld(detail::distancePlacedScalar(polytopeA, bInA, nullptr, GjkTolerance{}));
         },
         reference, tally, context + " (scalar build)");
+    if (__builtin_cpu_supports("avx2")) {
+      checkAnswers(
+          [&](double margin) {
+            return detail::intersectsPlacedAvx2(polytopeA, bInA, margin, GjkTolerance{});
+          },
+          [&] {
+            return inWorld(detail::distancePlacedAvx2(polytopeA, bInA, nullptr, GjkTolerance{}));
+          },
+          reference, tally, context + " (AVX2 build)");
+    }
     if (__builtin_cpu_supports("avx512f")) {
       checkAnswers(
           [&](double margin) {

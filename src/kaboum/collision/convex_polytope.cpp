@@ -15,6 +15,11 @@ std::uint32_t scanVertexChunksScalar(const VertexChunk* chunks, std::size_t chun
                                      const Vec3& direction) {
   return scanChunksScalar(chunks, chunkCount, direction);
 }
+[[gnu::target("avx2")]] std::uint32_t scanVertexChunksAvx2(const VertexChunk* chunks,
+                                                           std::size_t chunkCount,
+                                                           const Vec3& direction) {
+  return scanChunksAvx2(chunks, chunkCount, direction);
+}
 [[gnu::target("avx512f")]] std::uint32_t scanVertexChunksAvx512(const VertexChunk* chunks,
                                                                 std::size_t chunkCount,
                                                                 const Vec3& direction) {
@@ -25,6 +30,11 @@ std::uint32_t scanVertexChunksScalar(const VertexChunk* chunks, std::size_t chun
                                                           std::size_t chunkCount,
                                                           const Vec3& direction) {
   return scanVertexChunksScalar(chunks, chunkCount, direction);
+}
+[[gnu::target("avx2")]] std::uint32_t scanVertexChunks(const VertexChunk* chunks,
+                                                       std::size_t chunkCount,
+                                                       const Vec3& direction) {
+  return scanVertexChunksAvx2(chunks, chunkCount, direction);
 }
 [[gnu::target("avx512f")]] std::uint32_t scanVertexChunks(const VertexChunk* chunks,
                                                           std::size_t chunkCount,

@@ -25,16 +25,23 @@ struct alignas(64) VertexChunk {
 
 namespace detail {
 // The first vertex of `chunkCount` chunks (padded as ConvexPolytope's) maximising direction.x:
-// a scalar loop (any x86-64), and branch-free AVX-512 lanes (only where the CPU has AVX-512F).
+// a scalar loop (any x86-64), and branch-free vector lanes (only where the CPU has AVX2 /
+// AVX-512F).
 std::uint32_t scanVertexChunksScalar(const VertexChunk* chunks, std::size_t chunkCount,
                                      const Vec3& direction);
+[[gnu::target("avx2")]] std::uint32_t scanVertexChunksAvx2(const VertexChunk* chunks,
+                                                           std::size_t chunkCount,
+                                                           const Vec3& direction);
 [[gnu::target("avx512f")]] std::uint32_t scanVertexChunksAvx512(const VertexChunk* chunks,
                                                                 std::size_t chunkCount,
                                                                 const Vec3& direction);
-// One of the two, chosen for the CPU once (GCC function multiversioning, an ifunc).
+// One of them, chosen for the CPU once (GCC function multiversioning, an ifunc).
 [[gnu::target("default")]] std::uint32_t scanVertexChunks(const VertexChunk* chunks,
                                                           std::size_t chunkCount,
                                                           const Vec3& direction);
+[[gnu::target("avx2")]] std::uint32_t scanVertexChunks(const VertexChunk* chunks,
+                                                       std::size_t chunkCount,
+                                                       const Vec3& direction);
 [[gnu::target("avx512f")]] std::uint32_t scanVertexChunks(const VertexChunk* chunks,
                                                           std::size_t chunkCount,
                                                           const Vec3& direction);
@@ -227,10 +234,13 @@ inline bool scansBoth(const ConvexPolytope& a, const ConvexPolytope& b) {
 // The pair queries (portal test then GJK for the boolean, GJK for the distance; gjk.hpp) with
 // b's vertices placed in a's frame once per query, so that every support call is two plain
 // scans: no direction or point is transformed inside the loops. Requires scansBoth(a, b).
-// Scalar and AVX-512 builds of the whole query (each scan inlined); the unsuffixed overloads
-// pick one per CPU (GCC function multiversioning). The cache may be null (cold start).
+// Scalar, AVX2 and AVX-512 builds of the whole query (each scan inlined); the unsuffixed
+// overloads pick one per CPU (GCC function multiversioning). The cache may be null (cold start).
 bool intersectsPlacedScalar(const ConvexPolytope& a, const TransformedSupport& bInA, double margin,
                             const GjkTolerance& tolerance);
+[[gnu::target("avx2")]] bool intersectsPlacedAvx2(const ConvexPolytope& a,
+                                                  const TransformedSupport& bInA, double margin,
+                                                  const GjkTolerance& tolerance);
 [[gnu::target("avx512f")]] bool intersectsPlacedAvx512(const ConvexPolytope& a,
                                                        const TransformedSupport& bInA,
                                                        double margin,
@@ -238,11 +248,18 @@ bool intersectsPlacedScalar(const ConvexPolytope& a, const TransformedSupport& b
 [[gnu::target("default")]] bool intersectsPlaced(const ConvexPolytope& a,
                                                  const TransformedSupport& bInA, double margin,
                                                  const GjkTolerance& tolerance);
+[[gnu::target("avx2")]] bool intersectsPlaced(const ConvexPolytope& a,
+                                              const TransformedSupport& bInA, double margin,
+                                              const GjkTolerance& tolerance);
 [[gnu::target("avx512f")]] bool intersectsPlaced(const ConvexPolytope& a,
                                                  const TransformedSupport& bInA, double margin,
                                                  const GjkTolerance& tolerance);
 DistanceResult distancePlacedScalar(const ConvexPolytope& a, const TransformedSupport& bInA,
                                     LocalPairCache* cache, const GjkTolerance& tolerance);
+[[gnu::target("avx2")]] DistanceResult distancePlacedAvx2(const ConvexPolytope& a,
+                                                          const TransformedSupport& bInA,
+                                                          LocalPairCache* cache,
+                                                          const GjkTolerance& tolerance);
 [[gnu::target("avx512f")]] DistanceResult distancePlacedAvx512(const ConvexPolytope& a,
                                                                const TransformedSupport& bInA,
                                                                LocalPairCache* cache,
@@ -251,6 +268,10 @@ DistanceResult distancePlacedScalar(const ConvexPolytope& a, const TransformedSu
                                                          const TransformedSupport& bInA,
                                                          LocalPairCache* cache,
                                                          const GjkTolerance& tolerance);
+[[gnu::target("avx2")]] DistanceResult distancePlaced(const ConvexPolytope& a,
+                                                      const TransformedSupport& bInA,
+                                                      LocalPairCache* cache,
+                                                      const GjkTolerance& tolerance);
 [[gnu::target("avx512f")]] DistanceResult distancePlaced(const ConvexPolytope& a,
                                                          const TransformedSupport& bInA,
                                                          LocalPairCache* cache,

@@ -22,6 +22,18 @@ struct ScalarKernels {
   }
 };
 
+struct Avx2Kernels {
+  [[gnu::target("avx2")]] static std::uint32_t scan(const VertexChunk* chunks, std::size_t count,
+                                                    const Vec3& d) {
+    return scanChunksAvx2(chunks, count, d);
+  }
+  [[gnu::target("avx2")]] static void place(const VertexChunk* chunks, std::size_t count,
+                                            const Eigen::Matrix3d& r, const Vec3& t,
+                                            VertexChunk* placed) {
+    placeChunksAvx2(chunks, count, r, t, placed);
+  }
+};
+
 struct Avx512Kernels {
   [[gnu::target("avx512f")]] static std::uint32_t scan(const VertexChunk* chunks, std::size_t count,
                                                        const Vec3& d) {
@@ -107,6 +119,12 @@ DistanceResult distancePlacedWith(const ConvexPolytope& a, const TransformedSupp
                                              const GjkTolerance& tolerance) {
   return intersectsPlacedWith<ScalarKernels>(a, bInA, margin, tolerance);
 }
+[[gnu::target("avx2"), gnu::flatten]] bool intersectsPlacedAvx2(const ConvexPolytope& a,
+                                                                const TransformedSupport& bInA,
+                                                                double margin,
+                                                                const GjkTolerance& tolerance) {
+  return intersectsPlacedWith<Avx2Kernels>(a, bInA, margin, tolerance);
+}
 [[gnu::target("avx512f"), gnu::flatten]] bool intersectsPlacedAvx512(
     const ConvexPolytope& a, const TransformedSupport& bInA, double margin,
     const GjkTolerance& tolerance) {
@@ -116,6 +134,11 @@ DistanceResult distancePlacedWith(const ConvexPolytope& a, const TransformedSupp
                                                  const TransformedSupport& bInA, double margin,
                                                  const GjkTolerance& tolerance) {
   return intersectsPlacedScalar(a, bInA, margin, tolerance);
+}
+[[gnu::target("avx2")]] bool intersectsPlaced(const ConvexPolytope& a,
+                                              const TransformedSupport& bInA, double margin,
+                                              const GjkTolerance& tolerance) {
+  return intersectsPlacedAvx2(a, bInA, margin, tolerance);
 }
 [[gnu::target("avx512f")]] bool intersectsPlaced(const ConvexPolytope& a,
                                                  const TransformedSupport& bInA, double margin,
@@ -129,6 +152,11 @@ DistanceResult distancePlacedWith(const ConvexPolytope& a, const TransformedSupp
                                                      const GjkTolerance& tolerance) {
   return distancePlacedWith<ScalarKernels>(a, bInA, cache, tolerance);
 }
+[[gnu::target("avx2"), gnu::flatten]] DistanceResult distancePlacedAvx2(
+    const ConvexPolytope& a, const TransformedSupport& bInA, LocalPairCache* cache,
+    const GjkTolerance& tolerance) {
+  return distancePlacedWith<Avx2Kernels>(a, bInA, cache, tolerance);
+}
 [[gnu::target("avx512f"), gnu::flatten]] DistanceResult distancePlacedAvx512(
     const ConvexPolytope& a, const TransformedSupport& bInA, LocalPairCache* cache,
     const GjkTolerance& tolerance) {
@@ -139,6 +167,12 @@ DistanceResult distancePlacedWith(const ConvexPolytope& a, const TransformedSupp
                                                          LocalPairCache* cache,
                                                          const GjkTolerance& tolerance) {
   return distancePlacedScalar(a, bInA, cache, tolerance);
+}
+[[gnu::target("avx2")]] DistanceResult distancePlaced(const ConvexPolytope& a,
+                                                      const TransformedSupport& bInA,
+                                                      LocalPairCache* cache,
+                                                      const GjkTolerance& tolerance) {
+  return distancePlacedAvx2(a, bInA, cache, tolerance);
 }
 [[gnu::target("avx512f")]] DistanceResult distancePlaced(const ConvexPolytope& a,
                                                          const TransformedSupport& bInA,

@@ -1,10 +1,12 @@
 // The vertex-chunk kernels of the support mapping (thesis §4.1: every query is convex–convex, its
 // inner loop a support scan), inline so that whole pair queries compile around them per CPU:
-// support scans and rigid placement of chunks, scalar (any x86-64) and AVX-512.
+// support scans and rigid placement of chunks, scalar (any x86-64), AVX2 and AVX-512.
 #pragma once
 
 #include <immintrin.h>
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 
 #include "kaboum/collision/convex_polytope.hpp"
@@ -125,6 +127,95 @@ inline void placeChunksScalar(const VertexChunk* chunks, std::size_t chunkCount,
           _mm512_fmadd_pd(_mm512_set1_pd(r(row, 1)), y,
                           _mm512_fmadd_pd(_mm512_set1_pd(r(row, 0)), x, _mm512_set1_pd(t[row]))));
       _mm512_store_pd(out[row], p);
+    }
+  }
+}
+
+// AVX2 (4-wide, for CPUs without AVX-512): a chunk is two halves of four lanes. No fused
+// multiply-adds (the dispatch is on AVX2 alone, not every AVX2 CPU has FMA).
+struct ChunkHalves {
+  __m256d low, high;
+};
+
+// The four dot products of the lanes from `first` on with the direction (dx, dy, dz) broadcast.
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256d halfDotsAvx2(const VertexChunk& chunk,
+                                                                        std::size_t first,
+                                                                        __m256d dx, __m256d dy,
+                                                                        __m256d dz) {
+  return _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, _mm256_load_pd(chunk.x.data() + first)),
+                                     _mm256_mul_pd(dy, _mm256_load_pd(chunk.y.data() + first))),
+                       _mm256_mul_pd(dz, _mm256_load_pd(chunk.z.data() + first)));
+}
+[[gnu::target("avx2"), gnu::always_inline]] inline ChunkHalves chunkDotsAvx2(
+    const VertexChunk& chunk, __m256d dx, __m256d dy, __m256d dz) {
+  return {halfDotsAvx2(chunk, 0, dx, dy, dz), halfDotsAvx2(chunk, 4, dx, dy, dz)};
+}
+
+// The largest of the four lanes, in every lane.
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256d laneMaximumAvx2(__m256d v) {
+  v = _mm256_max_pd(v, _mm256_permute2f128_pd(v, v, 0x01));
+  return _mm256_max_pd(v, _mm256_permute_pd(v, 0x5));
+}
+
+// scanChunksScalar() four lanes at a time: per lane the best dot and its vertex, then the first
+// vertex at the largest dot.
+[[gnu::target("avx2")]] inline std::uint32_t scanChunksAvx2(const VertexChunk* chunks,
+                                                            std::size_t chunkCount,
+                                                            const Vec3& direction) {
+  const __m256d dx = _mm256_set1_pd(direction.x());
+  const __m256d dy = _mm256_set1_pd(direction.y());
+  const __m256d dz = _mm256_set1_pd(direction.z());
+  ChunkHalves best = chunkDotsAvx2(chunks[0], dx, dy, dz);
+  // Lane indices as doubles (exact up to 2^53), blended along with the dots.
+  __m256d indexLow = _mm256_set_pd(3, 2, 1, 0);
+  __m256d indexHigh = _mm256_set_pd(7, 6, 5, 4);
+  for (std::size_t c = 1; c < chunkCount; ++c) {
+    const ChunkHalves d = chunkDotsAvx2(chunks[c], dx, dy, dz);
+    const __m256d offset = _mm256_set1_pd(static_cast<double>(kLaneWidth * c));
+    const __m256d betterLow = _mm256_cmp_pd(d.low, best.low, _CMP_GT_OQ);
+    const __m256d betterHigh = _mm256_cmp_pd(d.high, best.high, _CMP_GT_OQ);
+    best.low = _mm256_blendv_pd(best.low, d.low, betterLow);
+    best.high = _mm256_blendv_pd(best.high, d.high, betterHigh);
+    indexLow =
+        _mm256_blendv_pd(indexLow, _mm256_add_pd(_mm256_set_pd(3, 2, 1, 0), offset), betterLow);
+    indexHigh =
+        _mm256_blendv_pd(indexHigh, _mm256_add_pd(_mm256_set_pd(7, 6, 5, 4), offset), betterHigh);
+  }
+  const __m256d top = laneMaximumAvx2(_mm256_max_pd(best.low, best.high));
+  const unsigned atTop =
+      static_cast<unsigned>(_mm256_movemask_pd(_mm256_cmp_pd(best.low, top, _CMP_EQ_OQ))) |
+      static_cast<unsigned>(_mm256_movemask_pd(_mm256_cmp_pd(best.high, top, _CMP_EQ_OQ))) << 4;
+  // No lane equals the maximum only for a NaN direction: any vertex will do.
+  if (atTop == 0) return 0;
+  if (chunkCount == 1) return static_cast<std::uint32_t>(__builtin_ctz(atTop));
+  alignas(32) std::array<double, kLaneWidth> index;
+  _mm256_store_pd(index.data(), indexLow);
+  _mm256_store_pd(index.data() + 4, indexHigh);
+  double first = index[static_cast<std::size_t>(__builtin_ctz(atTop))];
+  for (unsigned rest = atTop; rest != 0; rest &= rest - 1) {
+    first = std::min(first, index[static_cast<std::size_t>(__builtin_ctz(rest))]);
+  }
+  return static_cast<std::uint32_t>(first);
+}
+
+// placeChunksScalar() four lanes at a time.
+[[gnu::target("avx2")]] inline void placeChunksAvx2(const VertexChunk* chunks,
+                                                    std::size_t chunkCount,
+                                                    const Eigen::Matrix3d& r, const Vec3& t,
+                                                    VertexChunk* placed) {
+  for (std::size_t c = 0; c < chunkCount; ++c) {
+    double* const out[3] = {placed[c].x.data(), placed[c].y.data(), placed[c].z.data()};
+    for (std::size_t first = 0; first < kLaneWidth; first += 4) {
+      const __m256d x = _mm256_load_pd(chunks[c].x.data() + first);
+      const __m256d y = _mm256_load_pd(chunks[c].y.data() + first);
+      const __m256d z = _mm256_load_pd(chunks[c].z.data() + first);
+      for (int row = 0; row < 3; ++row) {
+        const __m256d p = _mm256_add_pd(
+            _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(r(row, 0)), x),
+                          _mm256_mul_pd(_mm256_set1_pd(r(row, 1)), y)),
+            _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(r(row, 2)), z), _mm256_set1_pd(t[row])));
+        _mm256_store_pd(out[row] + first, p);
+      }
     }
   }
 }
