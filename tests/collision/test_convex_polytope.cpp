@@ -1,10 +1,14 @@
 // ConvexPolytope and TransformedSupport: the support mapping every narrow-phase query relies on.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <random>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "kaboum/collision/convex_polytope.hpp"
 #include "kaboum/collision/polytope_pairs.hpp"
@@ -155,55 +159,60 @@ TEST(ConvexPolytope, SpheresAreNearlyTheLargestInnerAndSmallestBoundingOnes) {
   EXPECT_LT(cap.boundingSphereRadius(), farthest(capped, cap.localBox().center()) - 0.01);
 }
 
-// Both scan implementations (the scalar one, and the AVX-512 one where the CPU has it) return a
-// vertex at the maximum, the first one on exact ties (padding lanes repeat vertex 0), and a
-// valid vertex for a NaN direction.
-TEST(ConvexPolytope, ScalarAndAvx512ScansFindTheFirstMaximum) {
-  const bool avx512 = __builtin_cpu_supports("avx512f");
+// Every scan implementation (the scalar one, and the AVX2 and AVX-512 ones where the CPU has
+// them) returns a vertex at the maximum, the first one on exact ties (padding lanes repeat vertex
+// 0), and a valid vertex for a NaN direction.
+TEST(ConvexPolytope, EveryScanBuildFindsTheFirstMaximum) {
+  using Scan = std::uint32_t (*)(const VertexChunk*, std::size_t, const Vec3&);
+  std::vector<std::pair<std::string, Scan>> scans = {{"scalar", detail::scanVertexChunksScalar}};
+  if (__builtin_cpu_supports("avx2")) scans.emplace_back("AVX2", detail::scanVertexChunksAvx2);
+  if (__builtin_cpu_supports("avx512f")) {
+    scans.emplace_back("AVX-512", detail::scanVertexChunksAvx512);
+  }
   std::mt19937_64 rng(21);
   for (const int n : {4, 5, 8, 9, 15, 16, 17, 40, 64}) {
     const auto pair = randomPolytopePairs(1, n, 300 + static_cast<std::uint64_t>(n)).front();
     const ConvexPolytope polytope(pair.localA);
     const std::span<const VertexChunk> chunks = polytope.chunks();
     ASSERT_EQ(chunks.size(), (static_cast<std::size_t>(n) + kLaneWidth - 1) / kLaneWidth);
-    const auto expectMaximum = [&](std::uint32_t index, const Vec3& d) {
-      ASSERT_LT(index, polytope.vertexCount());
-      EXPECT_NEAR(d.dot(polytope.vertices()[index]), maxDot(polytope.vertices(), d),
-                  1e-12 * (1 + d.norm()));
-    };
-    for (int i = 0; i < 1000; ++i) {
-      const Vec3 d = randomDirection(rng);
-      expectMaximum(detail::scanVertexChunksScalar(chunks.data(), chunks.size(), d), d);
-      if (avx512) {
-        expectMaximum(detail::scanVertexChunksAvx512(chunks.data(), chunks.size(), d), d);
+    for (const auto& [name, scan] : scans) {
+      SCOPED_TRACE(name + " N=" + std::to_string(n));
+      for (int i = 0; i < 1000; ++i) {
+        const Vec3 d = randomDirection(rng);
+        const std::uint32_t index = scan(chunks.data(), chunks.size(), d);
+        ASSERT_LT(index, polytope.vertexCount());
+        EXPECT_NEAR(d.dot(polytope.vertices()[index]), maxDot(polytope.vertices(), d),
+                    1e-12 * (1 + d.norm()));
       }
-    }
-    // Every vertex ties along the zero direction: the first wins.
-    EXPECT_EQ(detail::scanVertexChunksScalar(chunks.data(), chunks.size(), Vec3::Zero()), 0U);
-    if (avx512) {
-      EXPECT_EQ(detail::scanVertexChunksAvx512(chunks.data(), chunks.size(), Vec3::Zero()), 0U);
-    }
-    const Vec3 nan = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
-    EXPECT_LT(detail::scanVertexChunksScalar(chunks.data(), chunks.size(), nan),
-              polytope.vertexCount());
-    if (avx512) {
-      EXPECT_LT(detail::scanVertexChunksAvx512(chunks.data(), chunks.size(), nan),
-                polytope.vertexCount());
+      // Every vertex ties along the zero direction: the first wins.
+      EXPECT_EQ(scan(chunks.data(), chunks.size(), Vec3::Zero()), 0U);
+      const Vec3 nan = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+      EXPECT_LT(scan(chunks.data(), chunks.size(), nan), polytope.vertexCount());
     }
   }
-  // A box repeated: exact ties between a vertex and its later copies go to the first copy.
+  // A box's corners repeated in three chunks: exact ties between a vertex and its later copies
+  // (in the same lane of later chunks, or other lanes) go to the first one.
   std::vector<Vec3> corners;
   for (int i = 0; i < 8; ++i) corners.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-  const ConvexPolytope box(corners);
-  const std::span<const VertexChunk> chunks = box.chunks();
-  for (const Vec3& d : {Vec3(1, 0, 0), Vec3(0, -1, 0), Vec3(1, 1, 0), Vec3(0, 0, 0)}) {
-    std::uint32_t first = 0;
-    for (std::uint32_t v = 0; v < box.vertexCount(); ++v) {
-      if (d.dot(box.vertices()[v]) > d.dot(box.vertices()[first])) first = v;
+  std::array<VertexChunk, 3> repeated;
+  for (VertexChunk& chunk : repeated) {
+    for (std::size_t lane = 0; lane < kLaneWidth; ++lane) {
+      const Vec3& corner = corners[(lane + 3) % kLaneWidth];
+      chunk.x[lane] = corner.x();
+      chunk.y[lane] = corner.y();
+      chunk.z[lane] = corner.z();
     }
-    EXPECT_EQ(detail::scanVertexChunksScalar(chunks.data(), chunks.size(), d), first);
-    if (avx512) {
-      EXPECT_EQ(detail::scanVertexChunksAvx512(chunks.data(), chunks.size(), d), first);
+  }
+  for (const auto& [name, scan] : scans) {
+    for (const Vec3& d : {Vec3(1, 0, 0), Vec3(0, -1, 0), Vec3(1, 1, 0), Vec3(0, 0, 0)}) {
+      std::uint32_t first = 0;
+      for (std::uint32_t v = 0; v < kLaneWidth; ++v) {
+        if (d.dot(corners[(v + 3) % kLaneWidth]) > d.dot(corners[(first + 3) % kLaneWidth])) {
+          first = v;
+        }
+      }
+      EXPECT_EQ(scan(repeated.data(), 1, d), first) << name;
+      EXPECT_EQ(scan(repeated.data(), repeated.size(), d), first) << name;
     }
   }
 }

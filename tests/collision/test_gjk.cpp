@@ -65,51 +65,71 @@ struct Tally {
   }
 };
 
-// Every query kind on one placed pair, checked against the reference.
-template <SupportMapping A, SupportMapping B>
-void checkPair(const A& a, const B& b, const std::vector<Vec3>& worldA,
-               const std::vector<Vec3>& worldB, Tally& tally, const std::string& label) {
-  const MinkowskiReference reference = minkowskiReference(worldA, worldB);
-  const double truth = reference.signedDistance;
-  ++tally.pairs;
-  if (truth <= 0) ++tally.overlapping;
-  std::ostringstream context;
-  context.precision(17);
-  context << label << " pair " << tally.pairs << " true signed distance " << truth;
+// The reference's answers for one pair: the true signed distance and both hulls.
+struct Truth {
+  Truth(const std::vector<Vec3>& worldA, const std::vector<Vec3>& worldB)
+      : signedDistance(minkowskiReference(worldA, worldB).signedDistance),
+        hullA(convexHull(worldA)),
+        hullB(convexHull(worldB)) {}
+  double signedDistance;
+  ConvexHull hullA, hullB;
+};
 
+// One implementation's answers on one pair, checked against the reference: `intersectsAt(margin)`
+// and `distanceOf()` (witness points in the world frame).
+template <class Intersects, class Distance>
+void checkAnswers(const Intersects& intersectsAt, const Distance& distanceOf, const Truth& truth,
+                  Tally& tally, const std::string& context) {
   for (const double margin : {0.0, kMargin}) {
-    const bool hit = intersects(a, b, margin);
-    if (!hit && truth <= margin + kReferenceRounding) {
-      tally.fail(tally.missedOverlaps, context.str() + ": missed at margin " + number(margin));
+    const bool hit = intersectsAt(margin);
+    if (!hit && truth.signedDistance <= margin + kReferenceRounding) {
+      tally.fail(tally.missedOverlaps, context + ": missed at margin " + number(margin));
     }
-    if (hit && truth > trueBand(margin, truth)) {
-      tally.fail(tally.falseAlarms, context.str() + ": false alarm at margin " + number(margin));
+    if (hit && truth.signedDistance > trueBand(margin, truth.signedDistance)) {
+      tally.fail(tally.falseAlarms, context + ": false alarm at margin " + number(margin));
     }
   }
 
-  const DistanceResult result = distance(a, b);
-  const double clamped = std::max(truth, 0.0);
+  const DistanceResult result = distanceOf();
+  const double clamped = std::max(truth.signedDistance, 0.0);
   const GjkTolerance tolerance;
   if (result.distance > clamped + kReferenceRounding) {
-    tally.fail(tally.overestimates, context.str() + ": distance " + number(result.distance));
+    tally.fail(tally.overestimates, context + ": distance " + number(result.distance));
   }
   if (result.distance <
       clamped - tolerance.absolute - tolerance.relative * clamped - kReferenceRounding) {
-    tally.fail(tally.looseDistances, context.str() + ": distance " + number(result.distance));
+    tally.fail(tally.looseDistances, context + ": distance " + number(result.distance));
   }
-  const ConvexHull hullA = convexHull(worldA);
-  const ConvexHull hullB = convexHull(worldB);
   const double gap = (result.pointA - result.pointB).norm();
-  const bool onShapes =
-      outsideBy(hullA, result.pointA) <= 1e-9 && outsideBy(hullB, result.pointB) <= 1e-9;
+  const bool onShapes = outsideBy(truth.hullA, result.pointA) <= 1e-9 &&
+                        outsideBy(truth.hullB, result.pointB) <= 1e-9;
   const bool consistent = result.intersecting
                               ? gap <= 1e-9
                               : gap >= result.distance - kReferenceRounding &&
                                     gap <= result.distance + tolerance.absolute +
                                                tolerance.relative * gap + kReferenceRounding;
   if (!onShapes || !consistent) {
-    tally.fail(tally.witnessesOff, context.str() + ": witness gap " + number(gap));
+    tally.fail(tally.witnessesOff, context + ": witness gap " + number(gap));
   }
+}
+
+std::string describe(const std::string& label, const Tally& tally, double truth) {
+  std::ostringstream context;
+  context.precision(17);
+  context << label << " pair " << tally.pairs << " true signed distance " << truth;
+  return context.str();
+}
+
+// Every query kind on one placed pair, checked against the reference.
+template <SupportMapping A, SupportMapping B>
+void checkPair(const A& a, const B& b, const std::vector<Vec3>& worldA,
+               const std::vector<Vec3>& worldB, Tally& tally, const std::string& label) {
+  const Truth truth(worldA, worldB);
+  ++tally.pairs;
+  if (truth.signedDistance <= 0) ++tally.overlapping;
+  checkAnswers([&](double margin) { return intersects(a, b, margin); },
+               [&] { return distance(a, b); }, truth, tally,
+               describe(label, tally, truth.signedDistance));
 }
 
 // A verdict may be `separated` only beyond margin and `intersecting` only within the band.
@@ -123,15 +143,60 @@ void checkVerdict(PairVerdict verdict, double truth, double margin, Tally& tally
   }
 }
 
-// The public queries (checkPair), and the two conservative tests they start with, each on its
-// own: sphereVerdict() and portalIntersects() in a's frame.
+// The public queries (checkPair); the two conservative tests they start with, each on its own
+// (sphereVerdict() and portalIntersects() in a's frame); and, for pairs the scan handles, every
+// build of the placed queries (scalar, and AVX2 / AVX-512 where the CPU has them), whatever this
+// CPU picks.
 void checkPolytopePair(const PolytopePair& pair, Tally& tally, const std::string& label) {
   const ConvexPolytope polytopeA(pair.localA);
   const ConvexPolytope polytopeB(pair.localB);
-  checkPair(TransformedSupport(polytopeA, pair.poseA), TransformedSupport(polytopeB, pair.poseB),
-            pair.worldA(), pair.worldB(), tally, label);
-  const double truth = minkowskiReference(pair.worldA(), pair.worldB()).signedDistance;
+  const std::vector<Vec3> worldA = pair.worldA();
+  const std::vector<Vec3> worldB = pair.worldB();
+  const Truth reference(worldA, worldB);
+  const double truth = reference.signedDistance;
+  ++tally.pairs;
+  if (truth <= 0) ++tally.overlapping;
+  const std::string context = describe(label, tally, truth);
+  const TransformedSupport a(polytopeA, pair.poseA);
+  const TransformedSupport b(polytopeB, pair.poseB);
+  checkAnswers([&](double margin) { return intersects(a, b, margin); },
+               [&] { return distance(a, b); }, reference, tally, context);
   const TransformedSupport bInA(polytopeB, pair.poseA.inverse() * pair.poseB);
+  const auto inWorld = [&pair](DistanceResult result) {
+    result.pointA = pair.poseA * result.pointA;
+    result.pointB = pair.poseA * result.pointB;
+    return result;
+  };
+  if (detail::scansBoth(polytopeA, polytopeB)) {
+    checkAnswers(
+        [&](double margin) {
+          return detail::intersectsPlacedScalar(polytopeA, bInA, margin, GjkTolerance{});
+        },
+        [&] {
+          return inWorld(detail::distancePlacedScalar(polytopeA, bInA, nullptr, GjkTolerance{}));
+        },
+        reference, tally, context + " (scalar build)");
+    if (__builtin_cpu_supports("avx2")) {
+      checkAnswers(
+          [&](double margin) {
+            return detail::intersectsPlacedAvx2(polytopeA, bInA, margin, GjkTolerance{});
+          },
+          [&] {
+            return inWorld(detail::distancePlacedAvx2(polytopeA, bInA, nullptr, GjkTolerance{}));
+          },
+          reference, tally, context + " (AVX2 build)");
+    }
+    if (__builtin_cpu_supports("avx512f")) {
+      checkAnswers(
+          [&](double margin) {
+            return detail::intersectsPlacedAvx512(polytopeA, bInA, margin, GjkTolerance{});
+          },
+          [&] {
+            return inWorld(detail::distancePlacedAvx512(polytopeA, bInA, nullptr, GjkTolerance{}));
+          },
+          reference, tally, context + " (AVX-512 build)");
+    }
+  }
   for (const double margin : {0.0, kMargin}) {
     const std::string what = label + " margin " + number(margin);
     checkVerdict(sphereVerdict(polytopeA, bInA, margin), truth, margin, tally, what + " spheres");

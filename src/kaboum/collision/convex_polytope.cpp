@@ -1,11 +1,11 @@
 #include "kaboum/collision/convex_polytope.hpp"
 
-#include <immintrin.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+
+#include "kaboum/collision/vertex_scan.hpp"
 
 namespace kaboum::collision {
 
@@ -13,87 +13,28 @@ namespace detail {
 
 std::uint32_t scanVertexChunksScalar(const VertexChunk* chunks, std::size_t chunkCount,
                                      const Vec3& direction) {
-  const double dx = direction.x();
-  const double dy = direction.y();
-  const double dz = direction.z();
-  std::uint32_t best = 0;
-  double bestDot = dx * chunks[0].x[0] + dy * chunks[0].y[0] + dz * chunks[0].z[0];
-  // Padding lanes repeat vertex 0 and never beat it (strict comparison).
-  for (std::size_t c = 0; c < chunkCount; ++c) {
-    const VertexChunk& chunk = chunks[c];
-    for (std::size_t lane = 0; lane < kLaneWidth; ++lane) {
-      const double d = dx * chunk.x[lane] + dy * chunk.y[lane] + dz * chunk.z[lane];
-      best = d > bestDot ? static_cast<std::uint32_t>(c * kLaneWidth + lane) : best;
-      bestDot = d > bestDot ? d : bestDot;
-    }
-  }
-  return best;
+  return scanChunksScalar(chunks, chunkCount, direction);
 }
-
-// The eight dot products of a chunk with the direction (dx, dy, dz) broadcast.
-[[gnu::target("avx512f"), gnu::always_inline]] inline __m512d chunkDots(const VertexChunk& chunk,
-                                                                        __m512d dx, __m512d dy,
-                                                                        __m512d dz) {
-  return _mm512_fmadd_pd(dz, _mm512_load_pd(chunk.z.data()),
-                         _mm512_fmadd_pd(dy, _mm512_load_pd(chunk.y.data()),
-                                         _mm512_mul_pd(dx, _mm512_load_pd(chunk.x.data()))));
+[[gnu::target("avx2")]] std::uint32_t scanVertexChunksAvx2(const VertexChunk* chunks,
+                                                           std::size_t chunkCount,
+                                                           const Vec3& direction) {
+  return scanChunksAvx2(chunks, chunkCount, direction);
 }
-
-// The largest (or smallest) of the eight lanes, in every lane: halves, then quarters, then pairs
-// swapped and compared. Vector-extension shuffles rather than GCC 12's AVX-512 reduction
-// intrinsics, which warn (-Wmaybe-uninitialized, GCC bug 105593).
-[[gnu::target("avx512f"), gnu::always_inline]] inline __m512d laneMaximum(__m512d v) {
-  __m512d swapped = __builtin_shufflevector(v, v, 4, 5, 6, 7, 0, 1, 2, 3);
-  v = swapped > v ? swapped : v;
-  swapped = __builtin_shufflevector(v, v, 2, 3, 0, 1, 6, 7, 4, 5);
-  v = swapped > v ? swapped : v;
-  swapped = __builtin_shufflevector(v, v, 1, 0, 3, 2, 5, 4, 7, 6);
-  return swapped > v ? swapped : v;
-}
-[[gnu::target("avx512f"), gnu::always_inline]] inline __v8di laneMinimum(__v8di v) {
-  __v8di swapped = __builtin_shufflevector(v, v, 4, 5, 6, 7, 0, 1, 2, 3);
-  v = swapped < v ? swapped : v;
-  swapped = __builtin_shufflevector(v, v, 2, 3, 0, 1, 6, 7, 4, 5);
-  v = swapped < v ? swapped : v;
-  swapped = __builtin_shufflevector(v, v, 1, 0, 3, 2, 5, 4, 7, 6);
-  return swapped < v ? swapped : v;
-}
-
-// Per lane the best dot and its vertex, then the largest dot across lanes and the smallest vertex
-// index reaching it (the first one, as the scalar scan). One chunk (up to 8 vertices, the common
-// case) skips the index lanes: the first lane holding the maximum is the vertex.
 [[gnu::target("avx512f")]] std::uint32_t scanVertexChunksAvx512(const VertexChunk* chunks,
                                                                 std::size_t chunkCount,
                                                                 const Vec3& direction) {
-  const __m512d dx = _mm512_set1_pd(direction.x());
-  const __m512d dy = _mm512_set1_pd(direction.y());
-  const __m512d dz = _mm512_set1_pd(direction.z());
-  __m512d best = chunkDots(chunks[0], dx, dy, dz);
-  if (chunkCount == 1) {
-    const __mmask8 atTop = _mm512_cmp_pd_mask(best, laneMaximum(best), _CMP_EQ_OQ);
-    // No lane equals the maximum only for a NaN direction: any vertex will do.
-    return atTop == 0 ? 0 : static_cast<std::uint32_t>(__builtin_ctz(atTop));
-  }
-  const __m512i laneIndex = _mm512_set_epi64(7, 6, 5, 4, 3, 2, 1, 0);
-  __m512i bestIndex = laneIndex;
-  for (std::size_t c = 1; c < chunkCount; ++c) {
-    const __m512d d = chunkDots(chunks[c], dx, dy, dz);
-    const __mmask8 better = _mm512_cmp_pd_mask(d, best, _CMP_GT_OQ);
-    best = _mm512_mask_mov_pd(best, better, d);
-    bestIndex = _mm512_mask_add_epi64(bestIndex, better, laneIndex,
-                                      _mm512_set1_epi64(static_cast<long long>(kLaneWidth * c)));
-  }
-  const __mmask8 atTop = _mm512_cmp_pd_mask(best, laneMaximum(best), _CMP_EQ_OQ);
-  if (atTop == 0) return 0;
-  const __v8di first = laneMinimum(reinterpret_cast<__v8di>(
-      _mm512_mask_blend_epi64(atTop, _mm512_set1_epi64(UINT32_MAX), bestIndex)));
-  return static_cast<std::uint32_t>(first[0]);
+  return scanChunksAvx512(chunks, chunkCount, direction);
 }
 
 [[gnu::target("default")]] std::uint32_t scanVertexChunks(const VertexChunk* chunks,
                                                           std::size_t chunkCount,
                                                           const Vec3& direction) {
   return scanVertexChunksScalar(chunks, chunkCount, direction);
+}
+[[gnu::target("avx2")]] std::uint32_t scanVertexChunks(const VertexChunk* chunks,
+                                                       std::size_t chunkCount,
+                                                       const Vec3& direction) {
+  return scanVertexChunksAvx2(chunks, chunkCount, direction);
 }
 [[gnu::target("avx512f")]] std::uint32_t scanVertexChunks(const VertexChunk* chunks,
                                                           std::size_t chunkCount,

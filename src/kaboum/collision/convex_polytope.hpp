@@ -25,16 +25,23 @@ struct alignas(64) VertexChunk {
 
 namespace detail {
 // The first vertex of `chunkCount` chunks (padded as ConvexPolytope's) maximising direction.x:
-// a scalar loop (any x86-64), and branch-free AVX-512 lanes (only where the CPU has AVX-512F).
+// a scalar loop (any x86-64), and branch-free vector lanes (only where the CPU has AVX2 /
+// AVX-512F).
 std::uint32_t scanVertexChunksScalar(const VertexChunk* chunks, std::size_t chunkCount,
                                      const Vec3& direction);
+[[gnu::target("avx2")]] std::uint32_t scanVertexChunksAvx2(const VertexChunk* chunks,
+                                                           std::size_t chunkCount,
+                                                           const Vec3& direction);
 [[gnu::target("avx512f")]] std::uint32_t scanVertexChunksAvx512(const VertexChunk* chunks,
                                                                 std::size_t chunkCount,
                                                                 const Vec3& direction);
-// One of the two, chosen for the CPU once (GCC function multiversioning, an ifunc).
+// One of them, chosen for the CPU once (GCC function multiversioning, an ifunc).
 [[gnu::target("default")]] std::uint32_t scanVertexChunks(const VertexChunk* chunks,
                                                           std::size_t chunkCount,
                                                           const Vec3& direction);
+[[gnu::target("avx2")]] std::uint32_t scanVertexChunks(const VertexChunk* chunks,
+                                                       std::size_t chunkCount,
+                                                       const Vec3& direction);
 [[gnu::target("avx512f")]] std::uint32_t scanVertexChunks(const VertexChunk* chunks,
                                                           std::size_t chunkCount,
                                                           const Vec3& direction);
@@ -216,6 +223,64 @@ static_assert(SupportMapping<TransformedSupport>);
 
 namespace detail {
 
+using LocalPairCache = GjkCache<ConvexPolytope, TransformedSupport>;
+
+// Whether the placed pair queries below apply: both polytopes are scanned, not climbed.
+inline bool scansBoth(const ConvexPolytope& a, const ConvexPolytope& b) {
+  return a.vertexCount() <= ConvexPolytope::kBruteForceMaxVertices &&
+         b.vertexCount() <= ConvexPolytope::kBruteForceMaxVertices;
+}
+
+// The pair queries (portal test then GJK for the boolean, GJK for the distance; gjk.hpp) with
+// b's vertices placed in a's frame once per query, so that every support call is two plain
+// scans: no direction or point is transformed inside the loops. Requires scansBoth(a, b).
+// Scalar, AVX2 and AVX-512 builds of the whole query (each scan inlined); the unsuffixed
+// overloads pick one per CPU (GCC function multiversioning). The cache may be null (cold start).
+bool intersectsPlacedScalar(const ConvexPolytope& a, const TransformedSupport& bInA, double margin,
+                            const GjkTolerance& tolerance);
+[[gnu::target("avx2")]] bool intersectsPlacedAvx2(const ConvexPolytope& a,
+                                                  const TransformedSupport& bInA, double margin,
+                                                  const GjkTolerance& tolerance);
+[[gnu::target("avx512f")]] bool intersectsPlacedAvx512(const ConvexPolytope& a,
+                                                       const TransformedSupport& bInA,
+                                                       double margin,
+                                                       const GjkTolerance& tolerance);
+[[gnu::target("default")]] bool intersectsPlaced(const ConvexPolytope& a,
+                                                 const TransformedSupport& bInA, double margin,
+                                                 const GjkTolerance& tolerance);
+[[gnu::target("avx2")]] bool intersectsPlaced(const ConvexPolytope& a,
+                                              const TransformedSupport& bInA, double margin,
+                                              const GjkTolerance& tolerance);
+[[gnu::target("avx512f")]] bool intersectsPlaced(const ConvexPolytope& a,
+                                                 const TransformedSupport& bInA, double margin,
+                                                 const GjkTolerance& tolerance);
+DistanceResult distancePlacedScalar(const ConvexPolytope& a, const TransformedSupport& bInA,
+                                    LocalPairCache* cache, const GjkTolerance& tolerance);
+[[gnu::target("avx2")]] DistanceResult distancePlacedAvx2(const ConvexPolytope& a,
+                                                          const TransformedSupport& bInA,
+                                                          LocalPairCache* cache,
+                                                          const GjkTolerance& tolerance);
+[[gnu::target("avx512f")]] DistanceResult distancePlacedAvx512(const ConvexPolytope& a,
+                                                               const TransformedSupport& bInA,
+                                                               LocalPairCache* cache,
+                                                               const GjkTolerance& tolerance);
+[[gnu::target("default")]] DistanceResult distancePlaced(const ConvexPolytope& a,
+                                                         const TransformedSupport& bInA,
+                                                         LocalPairCache* cache,
+                                                         const GjkTolerance& tolerance);
+[[gnu::target("avx2")]] DistanceResult distancePlaced(const ConvexPolytope& a,
+                                                      const TransformedSupport& bInA,
+                                                      LocalPairCache* cache,
+                                                      const GjkTolerance& tolerance);
+[[gnu::target("avx512f")]] DistanceResult distancePlaced(const ConvexPolytope& a,
+                                                         const TransformedSupport& bInA,
+                                                         LocalPairCache* cache,
+                                                         const GjkTolerance& tolerance);
+
+}  // namespace detail
+
+namespace detail {
+
 // sphereVerdict() with each polytope's sphere centres placed into a common frame by `placeA`
 // and `placeB` (callables Vec3 -> Vec3); the inner balls are only placed when needed.
 template <class PlaceA, class PlaceB>
@@ -263,6 +328,9 @@ inline bool intersects(const ConvexPolytope& a, const TransformedSupport& b, dou
                        const GjkTolerance& tolerance = {}) {
   const PairVerdict verdict = sphereVerdict(a, b, margin, tolerance);
   if (verdict != PairVerdict::unknown) return verdict == PairVerdict::intersecting;
+  if (cache == nullptr && detail::scansBoth(a, b.polytope())) {
+    return detail::intersectsPlaced(a, b, margin, tolerance);
+  }
   return intersects<ConvexPolytope, TransformedSupport>(a, b, margin, cache, tolerance);
 }
 
@@ -281,6 +349,7 @@ inline DistanceResult distance(const ConvexPolytope& a, const TransformedSupport
     result.pointB = result.pointA;
     return result;
   }
+  if (detail::scansBoth(a, b.polytope())) return detail::distancePlaced(a, b, cache, tolerance);
   return distance<ConvexPolytope, TransformedSupport>(a, b, cache, tolerance);
 }
 
@@ -308,7 +377,6 @@ inline TransformedSupport inFrameOf(const TransformedSupport& a, const Transform
 }
 
 using PlacedPairCache = GjkCache<TransformedSupport, TransformedSupport>;
-using LocalPairCache = GjkCache<ConvexPolytope, TransformedSupport>;
 
 // Runs `query(local cache or nullptr)` with the placed cache's state moved into a's frame and
 // back: a null cache stays null (a cold query).
@@ -331,6 +399,9 @@ inline bool intersects(const TransformedSupport& a, const TransformedSupport& b,
   const PairVerdict verdict = sphereVerdict(a, b, margin, tolerance);
   if (verdict != PairVerdict::unknown) return verdict == PairVerdict::intersecting;
   const TransformedSupport bInA = detail::inFrameOf(a, b);
+  if (cache == nullptr && detail::scansBoth(a.polytope(), b.polytope())) {
+    return detail::intersectsPlaced(a.polytope(), bInA, margin, tolerance);
+  }
   return detail::withLocalCache(cache, [&](detail::LocalPairCache* local) {
     return intersects<ConvexPolytope, TransformedSupport>(a.polytope(), bInA, margin, local,
                                                           tolerance);
