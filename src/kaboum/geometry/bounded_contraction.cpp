@@ -125,11 +125,16 @@ ContractionPoint solveContractionExhaustive(const Quadric& q, std::span<const Ha
 
 ContractionPoint solveContraction(const Quadric& q, std::span<const HalfSpace> halfSpaces,
                                   double tolerance) {
+  const auto start = unconstrainedMinimizer(q);
+  if (!start) return solveContractionExhaustive(q, halfSpaces, tolerance);
+  return solveContractionFrom(q, *start, halfSpaces, tolerance);
+}
+
+ContractionPoint solveContractionFrom(const Quadric& q, const Vec3& minimizer,
+                                      std::span<const HalfSpace> halfSpaces, double tolerance) {
   std::array<const HalfSpace*, 3> active{};
   std::size_t activeCount = 0;
-  auto start = unconstrainedMinimizer(q);
-  if (!start) return solveContractionExhaustive(q, halfSpaces, tolerance);
-  Vec3 x = *start;
+  Vec3 x = minimizer;
   double cost = q(x);
 
   constexpr int kMaxRounds = 64;

@@ -45,5 +45,8 @@ ContractionPoint solveContractionExhaustive(const Quadric& q, std::span<const Ha
 // calling).
 ContractionPoint solveContraction(const Quadric& q, std::span<const HalfSpace> halfSpaces,
                                   double tolerance);
+// solveContraction for a caller that already has the unconstrained minimizer of `q`.
+ContractionPoint solveContractionFrom(const Quadric& q, const Vec3& minimizer,
+                                      std::span<const HalfSpace> halfSpaces, double tolerance);
 
 }  // namespace kaboum

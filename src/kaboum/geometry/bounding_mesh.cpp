@@ -42,7 +42,8 @@ struct EdgeProblem {
   Vec3 origin;
   Quadric quadric;  // regularized, positive definite
   std::optional<Vec3> start;
-  double lowerBound;  // of the cost: the quadric at `start` (0 without one)
+  double minimum;     // the quadric at `start` (0 without one)
+  double lowerBound;  // of the cost: max(minimum, 0)
 };
 
 class BoundingMeshSimplifier {
@@ -322,7 +323,8 @@ EdgeProblem BoundingMeshSimplifier::problemOf(std::uint32_t e) const {
   p.quadric = (quadrics_[a] + quadrics_[b]).centredAt(p.origin);
   p.quadric.a += (1e-9 * p.quadric.a.trace() + 1e-300) * Eigen::Matrix3d::Identity();
   p.start = unconstrainedMinimizer(p.quadric);
-  p.lowerBound = p.start ? std::max(p.quadric(*p.start), 0.0) : 0.0;
+  p.minimum = p.start ? p.quadric(*p.start) : 0.0;
+  p.lowerBound = std::max(p.minimum, 0.0);
   return p;
 }
 
@@ -349,7 +351,9 @@ void BoundingMeshSimplifier::solveEdge(std::uint32_t e) {
   for (std::uint32_t t : solveFanV_) {
     if (!contains(t, a)) addHalfSpace(t, p.origin);
   }
-  const ContractionPoint point = solveContraction(p.quadric, halfSpaces_, tolerance_);
+  const ContractionPoint point =
+      p.start ? solveContractionFrom(p.quadric, *p.start, halfSpaces_, tolerance_)
+              : solveContraction(p.quadric, halfSpaces_, tolerance_);
   if (!point.feasible) {
     edgeState_[e] = EdgeState::Infeasible;
     queue_.set(e, std::numeric_limits<double>::infinity());
@@ -358,7 +362,7 @@ void BoundingMeshSimplifier::solveEdge(std::uint32_t e) {
   double cost = std::max(p.quadric(point.position), 0.0);
   if (p.start) {
     const Vec3 step = point.position - *p.start;
-    cost = std::max(p.quadric(*p.start) + std::max(step.dot(p.quadric.a * step), 0.0), 0.0);
+    cost = std::max(p.minimum + std::max(step.dot(p.quadric.a * step), 0.0), 0.0);
   }
   edgeState_[e] = EdgeState::Solved;
   edgePositions_[e] = p.origin + point.position;
