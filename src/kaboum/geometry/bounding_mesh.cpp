@@ -22,10 +22,11 @@ namespace {
 constexpr std::uint32_t kNone = 0xffffffffu;
 
 // Where an edge stands in the greedy loop. A queued edge's key is its exact cost when Solved, and
-// otherwise the lower bound of its cost (the unconstrained minimum of its quadric), see run().
+// otherwise a lower bound of its cost, see run().
 enum class EdgeState : std::uint8_t {
   Off,         // not a candidate: an endpoint is locked, or the edge was contracted away
-  Lower,       // queued by its lower bound, not solved with the current planes
+  Lower,       // queued by a cheap lower bound; tightened (Bounded) when it reaches the top
+  Bounded,     // queued by a tighter lower bound; solved when it reaches the top
   Solved,      // queued by its exact cost; edgePositions_ holds its contraction point
   Infeasible,  // queued last (key +∞): no point satisfies the current planes
   Parked,      // rejected; retried when the queue runs empty if its neighbourhood changed
@@ -45,6 +46,14 @@ struct EdgeProblem {
   double minimum;     // the quadric at `start` (0 without one)
   double lowerBound;  // of the cost: max(minimum, 0)
 };
+
+// The edge's cost at x, computed as minimum + (x - x₀)ᵀA(x - x₀) for the unconstrained minimizer
+// x₀: never below the lower bound, even in floating point.
+double costAt(const EdgeProblem& p, const Vec3& x) {
+  if (!p.start) return std::max(p.quadric(x), 0.0);
+  const Vec3 step = x - *p.start;
+  return std::max(p.minimum + std::max(step.dot(p.quadric.a * step), 0.0), 0.0);
+}
 
 class BoundingMeshSimplifier {
  public:
@@ -76,8 +85,9 @@ class BoundingMeshSimplifier {
   void addHalfSpace(std::uint32_t t, const Vec3& origin);
   void queueEdge(std::uint32_t e);
   void solveEdge(std::uint32_t e);
+  bool tightenBound(std::uint32_t e);
   void invalidateEdge(std::uint32_t e);
-  double boundAfterChange(std::uint32_t e) const;
+  double boundAfterChange(std::uint32_t e, bool& fromLastCost) const;
   void park(std::uint32_t e);
   enum class Outcome { Done, Topology, Geometry, Crossing };
   bool newFanCrossesMesh(const Contraction& c);
@@ -121,7 +131,8 @@ class BoundingMeshSimplifier {
   std::vector<Vec3> edgePositions_;            // contraction point of a Solved edge
   std::vector<std::uint32_t> parkedVersions_;  // versionsOf(e) when it was parked
   std::vector<std::uint8_t> edgeListed_;       // in parked_
-  // The last solve of each edge: its cost, when (contractionCount_) and its active triangles.
+  // The last solve of each edge: its cost, when (contractionCount_) and its active triangles
+  // (activeKnown_: with the edge's current quadric; the triangles are kept as hints afterwards).
   std::vector<double> solvedCosts_;
   std::vector<std::uint32_t> solvedAt_;
   std::vector<std::array<std::uint32_t, 3>> activeTriangles_;
@@ -338,8 +349,7 @@ void BoundingMeshSimplifier::queueEdge(std::uint32_t e) {
 }
 
 // Solves edge e's constrained problem (Algorithm 1) with the current planes and re-keys it by its
-// exact cost. The cost is the lower bound plus (x - x₀)ᵀA(x - x₀) ≥ 0, which equals q(x) for the
-// minimizer x₀ of q, and is never below the lower bound even in floating point.
+// exact cost (costAt).
 void BoundingMeshSimplifier::solveEdge(std::uint32_t e) {
   const auto [a, b] = edgeEnds_[e];
   gatherFan(a, solveFanU_);
@@ -359,11 +369,7 @@ void BoundingMeshSimplifier::solveEdge(std::uint32_t e) {
     queue_.set(e, std::numeric_limits<double>::infinity());
     return;
   }
-  double cost = std::max(p.quadric(point.position), 0.0);
-  if (p.start) {
-    const Vec3 step = point.position - *p.start;
-    cost = std::max(p.minimum + std::max(step.dot(p.quadric.a * step), 0.0), 0.0);
-  }
+  const double cost = costAt(p, point.position);
   edgeState_[e] = EdgeState::Solved;
   edgePositions_[e] = p.origin + point.position;
   queue_.set(e, cost);
@@ -377,18 +383,48 @@ void BoundingMeshSimplifier::solveEdge(std::uint32_t e) {
   }
 }
 
+// Raises Lower edge e's key to the minimum of its quadric over the half-spaces of the triangles
+// active at its last solve that still bound it (alive, at one of its ends): a subset of its current
+// planes, so at most its exact cost (less a relative 10⁻⁷ and 10⁻¹⁰ of the diagonal² for rounding),
+// and a solve over at most three planes. False when no such triangle exists.
+bool BoundingMeshSimplifier::tightenBound(std::uint32_t e) {
+  const auto [a, b] = edgeEnds_[e];
+  std::array<std::uint32_t, 3> hints{};
+  std::size_t hintCount = 0;
+  for (const std::uint32_t t : activeTriangles_[e]) {
+    if (t != kNone && triangleAlive_[t] && (contains(t, a) || contains(t, b))) {
+      hints[hintCount++] = t;
+    }
+  }
+  if (hintCount == 0) return false;
+  const EdgeProblem p = problemOf(e);
+  if (!p.start) return false;
+  halfSpaces_.clear();
+  halfSpaceTriangles_.clear();
+  for (std::size_t i = 0; i < hintCount; ++i) addHalfSpace(hints[i], p.origin);
+  const ContractionPoint point = solveContractionFrom(p.quadric, *p.start, halfSpaces_, tolerance_);
+  edgeState_[e] = EdgeState::Bounded;
+  if (point.feasible) {
+    const double bound = costAt(p, point.position) * (1.0 - 1e-7) - costSlack_;
+    if (bound > queue_.key(e)) queue_.set(e, bound);
+  }
+  return true;
+}
+
 // A lower bound of edge e's exact cost after its planes changed. If none of the planes held as
 // equalities at its last optimum changed since, that optimum is still the optimum over the planes
 // that did not change (the KKT conditions involve only the active ones), and adding the changed
 // planes can only raise it: its cost (less a relative 10⁻⁷ for rounding) bounds the new one.
-// Otherwise the unconstrained minimum does.
-double BoundingMeshSimplifier::boundAfterChange(std::uint32_t e) const {
+// Otherwise the unconstrained minimum does. `fromLastCost` tells which.
+double BoundingMeshSimplifier::boundAfterChange(std::uint32_t e, bool& fromLastCost) const {
+  fromLastCost = false;
   if (!activeKnown_[e]) return lowerBounds_[e];
   for (const std::uint32_t t : activeTriangles_[e]) {
     if (t != kNone && (!triangleAlive_[t] || triangleChangedAt_[t] > solvedAt_[e])) {
       return lowerBounds_[e];
     }
   }
+  fromLastCost = true;
   return std::max(lowerBounds_[e], solvedCosts_[e] * (1.0 - 1e-7) - costSlack_);
 }
 
@@ -406,9 +442,10 @@ void BoundingMeshSimplifier::invalidateEdge(std::uint32_t e) {
     queue_.set(e, lowerBounds_[e]);
     return;
   }
-  const double bound = boundAfterChange(e);
-  if (state == EdgeState::Solved || bound < queue_.key(e)) {
-    edgeState_[e] = EdgeState::Lower;
+  bool fromLastCost = false;
+  const double bound = boundAfterChange(e, fromLastCost);
+  if (state != EdgeState::Lower || bound < queue_.key(e)) {  // a tightened bound may not hold now
+    edgeState_[e] = fromLastCost ? EdgeState::Bounded : EdgeState::Lower;
     queue_.set(e, bound);
   }
 }
@@ -728,7 +765,7 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
   edgeListed_.assign(edgeCount, 0);
   solvedCosts_.assign(edgeCount, 0.0);
   solvedAt_.assign(edgeCount, 0);
-  activeTriangles_.resize(edgeCount);
+  activeTriangles_.assign(edgeCount, {kNone, kNone, kNone});
   activeKnown_.assign(edgeCount, 0);
   triangleChangedAt_.assign(triangles_.size(), 0);
   queue_.reset(edgeCount);
@@ -786,6 +823,10 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
       continue;
     }
     if (edgeState_[e] == EdgeState::Lower) {
+      if (!tightenBound(e)) solveEdge(e);
+      continue;
+    }
+    if (edgeState_[e] == EdgeState::Bounded) {
       solveEdge(e);
       continue;
     }
