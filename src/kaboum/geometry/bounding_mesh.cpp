@@ -209,49 +209,50 @@ void BoundingMeshSimplifier::buildAdjacency() {
 }
 
 // Numbers the edges in order of (lower, higher) vertex, fills cornerEdge_ and edgeEnds_, locks the
-// vertices of border and non-manifold edges and lists the interior edges.
+// vertices of border and non-manifold edges and lists the interior edges. Each vertex v numbers its
+// edges to higher vertices from its own corners (a short sort per vertex, not one of all edges).
 void BoundingMeshSimplifier::classifyEdges(std::vector<std::uint32_t>& interiorEdges) {
   struct HalfEdge {
-    std::uint64_t key;  // min vertex << 32 | max vertex
+    std::uint32_t other;  // the higher vertex (or v itself)
     std::uint32_t corner;
-    bool forward;  // stored direction is min → max
+    bool forward;  // stored direction is lower → higher
   };
   std::vector<HalfEdge> halfEdges;
-  halfEdges.reserve(triangles_.size() * 3);
-  for (std::uint32_t t = 0; t < triangles_.size(); ++t) {
-    for (std::uint32_t k = 0; k < 3; ++k) {
-      const std::uint32_t u = triangles_[t][k], w = triangles_[t][(k + 1) % 3];
-      const std::uint64_t lo = std::min(u, w), hi = std::max(u, w);
-      halfEdges.push_back({lo << 32 | hi, 3 * t + k, u < w});
+  cornerEdge_.assign(triangles_.size() * 3, kNone);
+  for (std::uint32_t v = 0; v < positions_.size(); ++v) {
+    halfEdges.clear();
+    for (std::uint32_t c = firstCorner_[v]; c != kNone; c = nextCorner_[c]) {
+      const std::uint32_t t = c / 3, k = c % 3;
+      const std::uint32_t next = triangles_[t][(k + 1) % 3], previous = triangles_[t][(k + 2) % 3];
+      if (next >= v) halfEdges.push_back({next, c, next > v});  // (v, v) of a degenerate triangle
+      if (previous > v) halfEdges.push_back({previous, 3 * t + (k + 2) % 3, false});
     }
-  }
-  cornerEdge_.assign(halfEdges.size(), kNone);
-  std::sort(halfEdges.begin(), halfEdges.end(),
-            [](const HalfEdge& l, const HalfEdge& r) { return l.key < r.key; });
-  for (std::size_t i = 0; i < halfEdges.size();) {
-    std::size_t j = i;
-    int forward = 0;
-    const auto edge = static_cast<std::uint32_t>(edgeEnds_.size());
-    while (j < halfEdges.size() && halfEdges[j].key == halfEdges[i].key) {
-      forward += halfEdges[j].forward ? 1 : 0;
-      cornerEdge_[halfEdges[j].corner] = edge;
-      ++j;
+    std::sort(halfEdges.begin(), halfEdges.end(),
+              [](const HalfEdge& l, const HalfEdge& r) { return l.other < r.other; });
+    for (std::size_t i = 0; i < halfEdges.size();) {
+      std::size_t j = i;
+      int forward = 0;
+      const auto edge = static_cast<std::uint32_t>(edgeEnds_.size());
+      while (j < halfEdges.size() && halfEdges[j].other == halfEdges[i].other) {
+        forward += halfEdges[j].forward ? 1 : 0;
+        cornerEdge_[halfEdges[j].corner] = edge;
+        ++j;
+      }
+      const std::uint32_t lo = v, hi = halfEdges[i].other;
+      edgeEnds_.push_back({lo, hi});
+      const std::size_t count = j - i;
+      if (count == 2 && forward != 1) {
+        throw InputError("triangles are not consistently oriented (edge between vertices " +
+                         std::to_string(lo) + " and " + std::to_string(hi) +
+                         " is traversed twice in the same direction)");
+      }
+      if (count == 2) {
+        interiorEdges.push_back(edge);
+      } else {  // border (1) or non-manifold (> 2): keep it exactly as it is
+        vertexLocked_[lo] = vertexLocked_[hi] = 1;
+      }
+      i = j;
     }
-    const auto lo = static_cast<std::uint32_t>(halfEdges[i].key >> 32);
-    const auto hi = static_cast<std::uint32_t>(halfEdges[i].key & 0xffffffffu);
-    edgeEnds_.push_back({lo, hi});
-    const std::size_t count = j - i;
-    if (count == 2 && forward != 1) {
-      throw InputError("triangles are not consistently oriented (edge between vertices " +
-                       std::to_string(lo) + " and " + std::to_string(hi) +
-                       " is traversed twice in the same direction)");
-    }
-    if (count == 2) {
-      interiorEdges.push_back(edge);
-    } else {  // border (1) or non-manifold (> 2): keep it exactly as it is
-      vertexLocked_[lo] = vertexLocked_[hi] = 1;
-    }
-    i = j;
   }
 }
 
