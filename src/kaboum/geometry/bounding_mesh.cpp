@@ -43,8 +43,9 @@ struct EdgeProblem {
   Vec3 origin;
   Quadric quadric;  // regularized, positive definite
   std::optional<Vec3> start;
-  double minimum;     // the quadric at `start` (0 without one)
-  double lowerBound;  // of the cost: max(minimum, 0)
+  double minimum;         // the quadric at `start` (0 without one)
+  double lowerBound;      // of the cost: max(minimum, 0)
+  double curvatureFloor;  // the regularization: the quadric's smallest eigenvalue is at least this
 };
 
 // The edge's cost at x, computed as minimum + (x - x₀)ᵀA(x - x₀) for the unconstrained minimizer
@@ -333,7 +334,8 @@ EdgeProblem BoundingMeshSimplifier::problemOf(std::uint32_t e) const {
   EdgeProblem p;
   p.origin = 0.5 * (positions_[a] + positions_[b]);
   p.quadric = (quadrics_[a] + quadrics_[b]).centredAt(p.origin);
-  p.quadric.a += (1e-9 * p.quadric.a.trace() + 1e-300) * Eigen::Matrix3d::Identity();
+  p.curvatureFloor = 1e-9 * p.quadric.a.trace() + 1e-300;
+  p.quadric.a += p.curvatureFloor * Eigen::Matrix3d::Identity();
   p.start = unconstrainedMinimizer(p.quadric);
   p.minimum = p.start ? p.quadric(*p.start) : 0.0;
   p.lowerBound = std::max(p.minimum, 0.0);
@@ -385,9 +387,9 @@ void BoundingMeshSimplifier::solveEdge(std::uint32_t e) {
 }
 
 // Raises Lower edge e's key to the minimum of its quadric over the half-spaces of the triangles
-// active at its last solve that still bound it (alive, at one of its ends): a subset of its current
-// planes, so at most its exact cost (less a relative 10⁻⁷ and 10⁻¹⁰ of the diagonal² for rounding),
-// and a solve over at most three planes. False when no such triangle exists.
+// active at its last solve that still bound it (alive, at one of its ends), from the dual in closed
+// form (dualMinimumBound): a subset of its current planes, so at most its exact cost, less a
+// relative 10⁻⁶ and 10⁻¹⁰ of the diagonal² for rounding. False when no such triangle exists.
 bool BoundingMeshSimplifier::tightenBound(std::uint32_t e) {
   const auto [a, b] = edgeEnds_[e];
   std::array<std::uint32_t, 3> hints{};
@@ -403,10 +405,11 @@ bool BoundingMeshSimplifier::tightenBound(std::uint32_t e) {
   halfSpaces_.clear();
   halfSpaceTriangles_.clear();
   for (std::size_t i = 0; i < hintCount; ++i) addHalfSpace(hints[i], p.origin);
-  const ContractionPoint point = solveContractionFrom(p.quadric, *p.start, halfSpaces_, tolerance_);
+  const double minimum =
+      dualMinimumBound(p.quadric, *p.start, p.minimum, halfSpaces_, tolerance_, p.curvatureFloor);
   edgeState_[e] = EdgeState::Bounded;
-  if (point.feasible) {
-    const double bound = costAt(p, point.position) * (1.0 - 1e-7) - costSlack_;
+  if (minimum > p.lowerBound) {
+    const double bound = minimum * (1.0 - 1e-6) - costSlack_;
     if (bound > queue_.key(e)) queue_.set(e, bound);
   }
   return true;
