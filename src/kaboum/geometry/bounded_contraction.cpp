@@ -122,39 +122,35 @@ double dualMinimumBound(const Quadric& q, const Vec3& minimizer, double minimum,
       g[i][j] = g[j][i] = halfSpaces[i].normal.dot(inverseNormals[j]);
     }
   }
-  // Each subset S offers λ = 2 G_S⁻¹ s_S, kept when every multiplier is non-negative. A⁻¹ may be
-  // inaccurate for a nearly singular A, so the dual value is not taken from G: with y = ½ A⁻¹Nλ as
-  // computed and r = 2Ay - Nλ its residual, min_y L(y, λ) ≥ L(y, λ) - |r|² / (4 curvatureFloor),
-  // a lower bound whatever the error in y.
-  double best = 0.0;
-  const auto offer = [&](std::span<const double> lambda, std::span<const std::size_t> index) {
-    Vec3 y = Vec3::Zero(), pull = Vec3::Zero();  // pull = Nλ
-    double constant = 0.0;
-    for (std::size_t i = 0; i < lambda.size(); ++i) {
-      if (!(lambda[i] >= 0.0)) return;
-      y += (0.5 * lambda[i]) * inverseNormals[index[i]];
-      pull += lambda[i] * halfSpaces[index[i]].normal;
-      constant += lambda[i] * s[index[i]];
+  // Each subset S offers λ = 2 G_S⁻¹ s_S (zero outside S) when every multiplier is non-negative,
+  // with dual value ½ λ·s; the optimal subset's is the minimum. A⁻¹ may be inaccurate for a nearly
+  // singular A, so the best offer's value is then certified without G: with y = ½ A⁻¹Nλ as computed
+  // and r = 2Ay - Nλ its residual, min_y L(y, λ) ≥ L(y, λ) - |r|² / (4 curvatureFloor), a lower
+  // bound whatever the error in y.
+  Vec3 bestLambda = Vec3::Zero();
+  double bestValue = 0.0;
+  const auto offer = [&](const Vec3& lambda) {
+    if ((lambda.array() < 0.0).any()) return;
+    const double value = 0.5 * (lambda[0] * s[0] + lambda[1] * s[1] + lambda[2] * s[2]);
+    if (value > bestValue) {
+      bestValue = value;
+      bestLambda = lambda;
     }
-    const Vec3 ay = a * y;
-    const Vec3 residual = 2.0 * ay - pull;
-    const double lagrangian = y.dot(ay) - pull.dot(y) + constant;
-    best = std::max(best, lagrangian - residual.squaredNorm() / (4.0 * curvatureFloor));
   };
   for (std::size_t i = 0; i < k; ++i) {  // one half-space
     if (!(g[i][i] > 0.0)) continue;
-    const std::array<double, 1> lambda{2.0 * s[i] / g[i][i]};
-    const std::array<std::size_t, 1> index{i};
-    offer(lambda, index);
+    Vec3 lambda = Vec3::Zero();
+    lambda[static_cast<Eigen::Index>(i)] = 2.0 * s[i] / g[i][i];
+    offer(lambda);
   }
   for (std::size_t i = 0; i < k; ++i) {  // two half-spaces: a 2×2 system
     for (std::size_t j = i + 1; j < k; ++j) {
       const double d = g[i][i] * g[j][j] - g[i][j] * g[i][j];
       if (!(d > 0.0)) continue;
-      const std::array<double, 2> lambda{2.0 * (g[j][j] * s[i] - g[i][j] * s[j]) / d,
-                                         2.0 * (g[i][i] * s[j] - g[i][j] * s[i]) / d};
-      const std::array<std::size_t, 2> index{i, j};
-      offer(lambda, index);
+      Vec3 lambda = Vec3::Zero();
+      lambda[static_cast<Eigen::Index>(i)] = 2.0 * (g[j][j] * s[i] - g[i][j] * s[j]) / d;
+      lambda[static_cast<Eigen::Index>(j)] = 2.0 * (g[i][i] * s[j] - g[i][j] * s[i]) / d;
+      offer(lambda);
     }
   }
   if (k == 3) {  // all three: Cramer's rule
@@ -164,13 +160,21 @@ double dualMinimumBound(const Quadric& q, const Vec3& minimizer, double minimum,
     const Vec3 r0 = gm.col(1).cross(gm.col(2)), r1 = gm.col(2).cross(gm.col(0)),
                r2 = gm.col(0).cross(gm.col(1));
     const double d = gm.col(0).dot(r0);
-    if (d > 0.0) {
-      const std::array<double, 3> lambda{2.0 * r0.dot(sv) / d, 2.0 * r1.dot(sv) / d,
-                                         2.0 * r2.dot(sv) / d};
-      const std::array<std::size_t, 3> index{0, 1, 2};
-      offer(lambda, index);
-    }
+    if (d > 0.0) offer(2.0 * Vec3(r0.dot(sv), r1.dot(sv), r2.dot(sv)) / d);
   }
+  if (!(bestValue > 0.0)) return minimum;
+  Vec3 y = Vec3::Zero(), pull = Vec3::Zero();  // pull = Nλ
+  double constant = 0.0;
+  for (std::size_t i = 0; i < k; ++i) {
+    const double lambda = bestLambda[static_cast<Eigen::Index>(i)];
+    y += (0.5 * lambda) * inverseNormals[i];
+    pull += lambda * halfSpaces[i].normal;
+    constant += lambda * s[i];
+  }
+  const Vec3 ay = a * y;
+  const Vec3 residual = 2.0 * ay - pull;
+  const double lagrangian = y.dot(ay) - pull.dot(y) + constant;
+  const double best = std::max(0.0, lagrangian - residual.squaredNorm() / (4.0 * curvatureFloor));
   return minimum + best;
 }
 
