@@ -806,11 +806,11 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
     if (!vertexLocked_[edgeEnds_[e][0]] && !vertexLocked_[edgeEnds_[e][1]]) queueEdge(e);
   }
 
-  // Algorithm 2 with a lazy queue. Every queued edge's key is at most its exact cost (the
-  // constrained minimum is at least the unconstrained one), and a popped edge is solved first if it
-  // is not yet: it is contracted only once it is the least by exact cost. So edges are taken in
-  // exactly the order of a queue holding every exact cost (options_.lazyQueue = false), ties broken
-  // by edge id.
+  // Algorithm 2 with a lazy queue. Every queued edge's key is at most its exact cost (a minimum
+  // over fewer planes is at most the minimum over all), and a popped edge is first given a tighter
+  // bound, then solved if it is not yet: it is contracted only once it is the least by exact cost.
+  // So edges are taken in exactly the order of a queue holding every exact cost
+  // (options_.lazyQueue = false), ties broken by edge id.
   const std::size_t target = options_.targetVertices;
   const double maxCost = options_.maxError * options_.maxError;
   const std::size_t toRemove = aliveVertices_ > target ? aliveVertices_ - target : 0;
