@@ -1,6 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
+#include <span>
 #include <vector>
 
 #include "kaboum/geometry/bounded_contraction.hpp"
@@ -49,6 +52,44 @@ TEST(BoundedContraction, FastSolverMatchesExhaustiveAlgorithm1) {
     for (const HalfSpace& h : p.halfSpaces) EXPECT_GE(h.signedDistance(fast.position), -1e-9);
   }
   EXPECT_GT(feasibleCount, 2000);  // the generator mostly makes feasible problems
+}
+
+// The dual bound over the first (up to three) half-spaces never exceeds the constrained minimum
+// over all of them of the model the simplifier compares, minimum + (x - x₀)ᵀA(x - x₀), and with
+// three or fewer well-conditioned ones it is that minimum. A third of the quadrics are made of
+// planes regularized as weakly as the simplifier does (10⁻⁹ of the trace), where A⁻¹ is inaccurate.
+TEST(BoundedContraction, DualBoundIsTheMinimumOverItsHalfSpacesAndBoundsSupersets) {
+  std::mt19937_64 rng(11);
+  int exactChecks = 0, weakChecks = 0;
+  for (int trial = 0; trial < 6000; ++trial) {
+    const int planes = 1 + trial % 12;
+    Problem p = randomProblem(rng, planes, (trial % 5) * 0.4);
+    double floor = 1e-6;
+    const bool weak = trial % 3 == 0;
+    if (weak) {
+      p.q.a -= 1e-6 * Eigen::Matrix3d::Identity();
+      floor = 1e-9 * p.q.a.trace();
+      p.q.a += floor * Eigen::Matrix3d::Identity();
+    }
+    const auto start = unconstrainedMinimizer(p.q);
+    if (!start) continue;
+    const double minimum = p.q(*start);
+    const std::span<const HalfSpace> firstThree(p.halfSpaces.data(),
+                                                std::min<std::size_t>(3, p.halfSpaces.size()));
+    const double bound = dualMinimumBound(p.q, *start, minimum, firstThree, 1e-12, floor);
+    const ContractionPoint all = solveContraction(p.q, p.halfSpaces, 1e-12);
+    if (!all.feasible) continue;
+    const Vec3 step = all.position - *start;
+    const double cost = minimum + step.dot(p.q.a * step);
+    EXPECT_LE(bound, cost + 1e-9 * (std::abs(minimum) + cost)) << "trial " << trial;
+    weakChecks += weak ? 1 : 0;
+    if (planes <= 3 && !weak) {
+      ++exactChecks;
+      EXPECT_NEAR(bound, cost, 1e-7 * (1.0 + cost)) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(exactChecks, 400);
+  EXPECT_GT(weakChecks, 1000);
 }
 
 TEST(BoundedContraction, InfeasibleWhenHalfSpacesAreDisjoint) {

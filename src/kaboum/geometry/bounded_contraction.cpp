@@ -1,5 +1,6 @@
 #include "kaboum/geometry/bounded_contraction.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -98,6 +99,85 @@ std::optional<Vec3> unconstrainedMinimizer(const Quadric& q) {
   return solveOnSubspace(q, {});
 }
 
+double dualMinimumBound(const Quadric& q, const Vec3& minimizer, double minimum,
+                        std::span<const HalfSpace> halfSpaces, double tolerance,
+                        double curvatureFloor) {
+  const std::size_t k = std::min<std::size_t>(halfSpaces.size(), 3);
+  // A⁻¹ = adj(A) / det, with the rows of adj(A) the cross products of A's columns.
+  const Eigen::Matrix3d& a = q.a;
+  const Vec3 c0 = a.col(1).cross(a.col(2)), c1 = a.col(2).cross(a.col(0)),
+             c2 = a.col(0).cross(a.col(1));
+  const double det = a.col(0).dot(c0);
+  if (!(det > 0.0) || k == 0) return minimum;
+  std::array<Vec3, 3> inverseNormals;  // A⁻¹ nᵢ
+  std::array<double, 3> s{};           // violation of each relaxed half-space at the minimizer
+  for (std::size_t i = 0; i < k; ++i) {
+    const Vec3& n = halfSpaces[i].normal;
+    inverseNormals[i] = Vec3(c0.dot(n), c1.dot(n), c2.dot(n)) / det;
+    s[i] = -halfSpaces[i].signedDistance(minimizer) - tolerance;
+  }
+  std::array<std::array<double, 3>, 3> g{};  // G = NᵀA⁻¹N
+  for (std::size_t i = 0; i < k; ++i) {
+    for (std::size_t j = i; j < k; ++j) {
+      g[i][j] = g[j][i] = halfSpaces[i].normal.dot(inverseNormals[j]);
+    }
+  }
+  // Each subset S offers λ = 2 G_S⁻¹ s_S (zero outside S) when every multiplier is non-negative,
+  // with dual value ½ λ·s; the optimal subset's is the minimum. A⁻¹ may be inaccurate for a nearly
+  // singular A, so the best offer's value is then certified without G: with y = ½ A⁻¹Nλ as computed
+  // and r = 2Ay - Nλ its residual, min_y L(y, λ) ≥ L(y, λ) - |r|² / (4 curvatureFloor), a lower
+  // bound whatever the error in y.
+  Vec3 bestLambda = Vec3::Zero();
+  double bestValue = 0.0;
+  const auto offer = [&](const Vec3& lambda) {
+    if ((lambda.array() < 0.0).any()) return;
+    const double value = 0.5 * (lambda[0] * s[0] + lambda[1] * s[1] + lambda[2] * s[2]);
+    if (value > bestValue) {
+      bestValue = value;
+      bestLambda = lambda;
+    }
+  };
+  for (std::size_t i = 0; i < k; ++i) {  // one half-space
+    if (!(g[i][i] > 0.0)) continue;
+    Vec3 lambda = Vec3::Zero();
+    lambda[static_cast<Eigen::Index>(i)] = 2.0 * s[i] / g[i][i];
+    offer(lambda);
+  }
+  for (std::size_t i = 0; i < k; ++i) {  // two half-spaces: a 2×2 system
+    for (std::size_t j = i + 1; j < k; ++j) {
+      const double d = g[i][i] * g[j][j] - g[i][j] * g[i][j];
+      if (!(d > 0.0)) continue;
+      Vec3 lambda = Vec3::Zero();
+      lambda[static_cast<Eigen::Index>(i)] = 2.0 * (g[j][j] * s[i] - g[i][j] * s[j]) / d;
+      lambda[static_cast<Eigen::Index>(j)] = 2.0 * (g[i][i] * s[j] - g[i][j] * s[i]) / d;
+      offer(lambda);
+    }
+  }
+  if (k == 3) {  // all three: Cramer's rule
+    const Eigen::Matrix3d gm{
+        {g[0][0], g[0][1], g[0][2]}, {g[1][0], g[1][1], g[1][2]}, {g[2][0], g[2][1], g[2][2]}};
+    const Vec3 sv(s[0], s[1], s[2]);
+    const Vec3 r0 = gm.col(1).cross(gm.col(2)), r1 = gm.col(2).cross(gm.col(0)),
+               r2 = gm.col(0).cross(gm.col(1));
+    const double d = gm.col(0).dot(r0);
+    if (d > 0.0) offer(2.0 * Vec3(r0.dot(sv), r1.dot(sv), r2.dot(sv)) / d);
+  }
+  if (!(bestValue > 0.0)) return minimum;
+  Vec3 y = Vec3::Zero(), pull = Vec3::Zero();  // pull = Nλ
+  double constant = 0.0;
+  for (std::size_t i = 0; i < k; ++i) {
+    const double lambda = bestLambda[static_cast<Eigen::Index>(i)];
+    y += (0.5 * lambda) * inverseNormals[i];
+    pull += lambda * halfSpaces[i].normal;
+    constant += lambda * s[i];
+  }
+  const Vec3 ay = a * y;
+  const Vec3 residual = 2.0 * ay - pull;
+  const double lagrangian = y.dot(ay) - pull.dot(y) + constant;
+  const double best = std::max(0.0, lagrangian - residual.squaredNorm() / (4.0 * curvatureFloor));
+  return minimum + best;
+}
+
 ContractionPoint solveContractionExhaustive(const Quadric& q, std::span<const HalfSpace> halfSpaces,
                                             double tolerance) {
   Best best;
@@ -125,11 +205,16 @@ ContractionPoint solveContractionExhaustive(const Quadric& q, std::span<const Ha
 
 ContractionPoint solveContraction(const Quadric& q, std::span<const HalfSpace> halfSpaces,
                                   double tolerance) {
+  const auto start = unconstrainedMinimizer(q);
+  if (!start) return solveContractionExhaustive(q, halfSpaces, tolerance);
+  return solveContractionFrom(q, *start, halfSpaces, tolerance);
+}
+
+ContractionPoint solveContractionFrom(const Quadric& q, const Vec3& minimizer,
+                                      std::span<const HalfSpace> halfSpaces, double tolerance) {
   std::array<const HalfSpace*, 3> active{};
   std::size_t activeCount = 0;
-  auto start = unconstrainedMinimizer(q);
-  if (!start) return solveContractionExhaustive(q, halfSpaces, tolerance);
-  Vec3 x = *start;
+  Vec3 x = minimizer;
   double cost = q(x);
 
   constexpr int kMaxRounds = 64;

@@ -45,5 +45,19 @@ ContractionPoint solveContractionExhaustive(const Quadric& q, std::span<const Ha
 // calling).
 ContractionPoint solveContraction(const Quadric& q, std::span<const HalfSpace> halfSpaces,
                                   double tolerance);
+// A lower bound of the minimum of `q` over at most three half-spaces, each relaxed by `tolerance`,
+// from the Lagrangian dual in closed form: for each subset S of active half-spaces, the
+// multipliers λ_S = 2 G_S⁻¹ s_S (s: violations at the unconstrained minimizer, G = NᵀA⁻¹N), kept
+// when non-negative. Any λ ≥ 0 gives a lower bound (weak duality) and the optimal subset gives the
+// minimum itself, so it bounds solveContraction's cost over any superset of these half-spaces,
+// without solving for a point. `curvatureFloor` is a lower bound of A's smallest eigenvalue (A =
+// PSD + floor·I); it makes the bound hold even where A⁻¹ is computed inaccurately.
+double dualMinimumBound(const Quadric& q, const Vec3& minimizer, double minimum,
+                        std::span<const HalfSpace> halfSpaces, double tolerance,
+                        double curvatureFloor);
+
+// solveContraction for a caller that already has the unconstrained minimizer of `q`.
+ContractionPoint solveContractionFrom(const Quadric& q, const Vec3& minimizer,
+                                      std::span<const HalfSpace> halfSpaces, double tolerance);
 
 }  // namespace kaboum

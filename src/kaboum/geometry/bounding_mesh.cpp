@@ -22,10 +22,11 @@ namespace {
 constexpr std::uint32_t kNone = 0xffffffffu;
 
 // Where an edge stands in the greedy loop. A queued edge's key is its exact cost when Solved, and
-// otherwise the lower bound of its cost (the unconstrained minimum of its quadric), see run().
+// otherwise a lower bound of its cost, see run().
 enum class EdgeState : std::uint8_t {
   Off,         // not a candidate: an endpoint is locked, or the edge was contracted away
-  Lower,       // queued by its lower bound, not solved with the current planes
+  Lower,       // queued by a cheap lower bound; tightened (Bounded) when it reaches the top
+  Bounded,     // queued by a tighter lower bound; solved when it reaches the top
   Solved,      // queued by its exact cost; edgePositions_ holds its contraction point
   Infeasible,  // queued last (key +∞): no point satisfies the current planes
   Parked,      // rejected; retried when the queue runs empty if its neighbourhood changed
@@ -42,8 +43,18 @@ struct EdgeProblem {
   Vec3 origin;
   Quadric quadric;  // regularized, positive definite
   std::optional<Vec3> start;
-  double lowerBound;  // of the cost: the quadric at `start` (0 without one)
+  double minimum;         // the quadric at `start` (0 without one)
+  double lowerBound;      // of the cost: max(minimum, 0)
+  double curvatureFloor;  // the regularization: the quadric's smallest eigenvalue is at least this
 };
+
+// The edge's cost at x, computed as minimum + (x - x₀)ᵀA(x - x₀) for the unconstrained minimizer
+// x₀: never below the lower bound, even in floating point.
+double costAt(const EdgeProblem& p, const Vec3& x) {
+  if (!p.start) return std::max(p.quadric(x), 0.0);
+  const Vec3 step = x - *p.start;
+  return std::max(p.minimum + std::max(step.dot(p.quadric.a * step), 0.0), 0.0);
+}
 
 class BoundingMeshSimplifier {
  public:
@@ -75,8 +86,9 @@ class BoundingMeshSimplifier {
   void addHalfSpace(std::uint32_t t, const Vec3& origin);
   void queueEdge(std::uint32_t e);
   void solveEdge(std::uint32_t e);
+  bool tightenBound(std::uint32_t e);
   void invalidateEdge(std::uint32_t e);
-  double boundAfterChange(std::uint32_t e) const;
+  double boundAfterChange(std::uint32_t e, bool& fromLastCost) const;
   void park(std::uint32_t e);
   enum class Outcome { Done, Topology, Geometry, Crossing };
   bool newFanCrossesMesh(const Contraction& c);
@@ -120,7 +132,8 @@ class BoundingMeshSimplifier {
   std::vector<Vec3> edgePositions_;            // contraction point of a Solved edge
   std::vector<std::uint32_t> parkedVersions_;  // versionsOf(e) when it was parked
   std::vector<std::uint8_t> edgeListed_;       // in parked_
-  // The last solve of each edge: its cost, when (contractionCount_) and its active triangles.
+  // The last solve of each edge: its cost, when (contractionCount_) and its active triangles
+  // (activeKnown_: with the edge's current quadric; the triangles are kept as hints afterwards).
   std::vector<double> solvedCosts_;
   std::vector<std::uint32_t> solvedAt_;
   std::vector<std::array<std::uint32_t, 3>> activeTriangles_;
@@ -197,49 +210,50 @@ void BoundingMeshSimplifier::buildAdjacency() {
 }
 
 // Numbers the edges in order of (lower, higher) vertex, fills cornerEdge_ and edgeEnds_, locks the
-// vertices of border and non-manifold edges and lists the interior edges.
+// vertices of border and non-manifold edges and lists the interior edges. Each vertex v numbers its
+// edges to higher vertices from its own corners (a short sort per vertex, not one of all edges).
 void BoundingMeshSimplifier::classifyEdges(std::vector<std::uint32_t>& interiorEdges) {
   struct HalfEdge {
-    std::uint64_t key;  // min vertex << 32 | max vertex
+    std::uint32_t other;  // the higher vertex (or v itself)
     std::uint32_t corner;
-    bool forward;  // stored direction is min → max
+    bool forward;  // stored direction is lower → higher
   };
   std::vector<HalfEdge> halfEdges;
-  halfEdges.reserve(triangles_.size() * 3);
-  for (std::uint32_t t = 0; t < triangles_.size(); ++t) {
-    for (std::uint32_t k = 0; k < 3; ++k) {
-      const std::uint32_t u = triangles_[t][k], w = triangles_[t][(k + 1) % 3];
-      const std::uint64_t lo = std::min(u, w), hi = std::max(u, w);
-      halfEdges.push_back({lo << 32 | hi, 3 * t + k, u < w});
+  cornerEdge_.assign(triangles_.size() * 3, kNone);
+  for (std::uint32_t v = 0; v < positions_.size(); ++v) {
+    halfEdges.clear();
+    for (std::uint32_t c = firstCorner_[v]; c != kNone; c = nextCorner_[c]) {
+      const std::uint32_t t = c / 3, k = c % 3;
+      const std::uint32_t next = triangles_[t][(k + 1) % 3], previous = triangles_[t][(k + 2) % 3];
+      if (next >= v) halfEdges.push_back({next, c, next > v});  // (v, v) of a degenerate triangle
+      if (previous > v) halfEdges.push_back({previous, 3 * t + (k + 2) % 3, false});
     }
-  }
-  cornerEdge_.assign(halfEdges.size(), kNone);
-  std::sort(halfEdges.begin(), halfEdges.end(),
-            [](const HalfEdge& l, const HalfEdge& r) { return l.key < r.key; });
-  for (std::size_t i = 0; i < halfEdges.size();) {
-    std::size_t j = i;
-    int forward = 0;
-    const auto edge = static_cast<std::uint32_t>(edgeEnds_.size());
-    while (j < halfEdges.size() && halfEdges[j].key == halfEdges[i].key) {
-      forward += halfEdges[j].forward ? 1 : 0;
-      cornerEdge_[halfEdges[j].corner] = edge;
-      ++j;
+    std::sort(halfEdges.begin(), halfEdges.end(),
+              [](const HalfEdge& l, const HalfEdge& r) { return l.other < r.other; });
+    for (std::size_t i = 0; i < halfEdges.size();) {
+      std::size_t j = i;
+      int forward = 0;
+      const auto edge = static_cast<std::uint32_t>(edgeEnds_.size());
+      while (j < halfEdges.size() && halfEdges[j].other == halfEdges[i].other) {
+        forward += halfEdges[j].forward ? 1 : 0;
+        cornerEdge_[halfEdges[j].corner] = edge;
+        ++j;
+      }
+      const std::uint32_t lo = v, hi = halfEdges[i].other;
+      edgeEnds_.push_back({lo, hi});
+      const std::size_t count = j - i;
+      if (count == 2 && forward != 1) {
+        throw InputError("triangles are not consistently oriented (edge between vertices " +
+                         std::to_string(lo) + " and " + std::to_string(hi) +
+                         " is traversed twice in the same direction)");
+      }
+      if (count == 2) {
+        interiorEdges.push_back(edge);
+      } else {  // border (1) or non-manifold (> 2): keep it exactly as it is
+        vertexLocked_[lo] = vertexLocked_[hi] = 1;
+      }
+      i = j;
     }
-    const auto lo = static_cast<std::uint32_t>(halfEdges[i].key >> 32);
-    const auto hi = static_cast<std::uint32_t>(halfEdges[i].key & 0xffffffffu);
-    edgeEnds_.push_back({lo, hi});
-    const std::size_t count = j - i;
-    if (count == 2 && forward != 1) {
-      throw InputError("triangles are not consistently oriented (edge between vertices " +
-                       std::to_string(lo) + " and " + std::to_string(hi) +
-                       " is traversed twice in the same direction)");
-    }
-    if (count == 2) {
-      interiorEdges.push_back(edge);
-    } else {  // border (1) or non-manifold (> 2): keep it exactly as it is
-      vertexLocked_[lo] = vertexLocked_[hi] = 1;
-    }
-    i = j;
   }
 }
 
@@ -320,9 +334,11 @@ EdgeProblem BoundingMeshSimplifier::problemOf(std::uint32_t e) const {
   EdgeProblem p;
   p.origin = 0.5 * (positions_[a] + positions_[b]);
   p.quadric = (quadrics_[a] + quadrics_[b]).centredAt(p.origin);
-  p.quadric.a += (1e-9 * p.quadric.a.trace() + 1e-300) * Eigen::Matrix3d::Identity();
+  p.curvatureFloor = 1e-9 * p.quadric.a.trace() + 1e-300;
+  p.quadric.a += p.curvatureFloor * Eigen::Matrix3d::Identity();
   p.start = unconstrainedMinimizer(p.quadric);
-  p.lowerBound = p.start ? std::max(p.quadric(*p.start), 0.0) : 0.0;
+  p.minimum = p.start ? p.quadric(*p.start) : 0.0;
+  p.lowerBound = std::max(p.minimum, 0.0);
   return p;
 }
 
@@ -336,8 +352,7 @@ void BoundingMeshSimplifier::queueEdge(std::uint32_t e) {
 }
 
 // Solves edge e's constrained problem (Algorithm 1) with the current planes and re-keys it by its
-// exact cost. The cost is the lower bound plus (x - x₀)ᵀA(x - x₀) ≥ 0, which equals q(x) for the
-// minimizer x₀ of q, and is never below the lower bound even in floating point.
+// exact cost (costAt).
 void BoundingMeshSimplifier::solveEdge(std::uint32_t e) {
   const auto [a, b] = edgeEnds_[e];
   gatherFan(a, solveFanU_);
@@ -349,17 +364,15 @@ void BoundingMeshSimplifier::solveEdge(std::uint32_t e) {
   for (std::uint32_t t : solveFanV_) {
     if (!contains(t, a)) addHalfSpace(t, p.origin);
   }
-  const ContractionPoint point = solveContraction(p.quadric, halfSpaces_, tolerance_);
+  const ContractionPoint point =
+      p.start ? solveContractionFrom(p.quadric, *p.start, halfSpaces_, tolerance_)
+              : solveContraction(p.quadric, halfSpaces_, tolerance_);
   if (!point.feasible) {
     edgeState_[e] = EdgeState::Infeasible;
     queue_.set(e, std::numeric_limits<double>::infinity());
     return;
   }
-  double cost = std::max(p.quadric(point.position), 0.0);
-  if (p.start) {
-    const Vec3 step = point.position - *p.start;
-    cost = std::max(p.quadric(*p.start) + std::max(step.dot(p.quadric.a * step), 0.0), 0.0);
-  }
+  const double cost = costAt(p, point.position);
   edgeState_[e] = EdgeState::Solved;
   edgePositions_[e] = p.origin + point.position;
   queue_.set(e, cost);
@@ -373,18 +386,49 @@ void BoundingMeshSimplifier::solveEdge(std::uint32_t e) {
   }
 }
 
+// Raises Lower edge e's key to the minimum of its quadric over the half-spaces of the triangles
+// active at its last solve that still bound it (alive, at one of its ends), from the dual in closed
+// form (dualMinimumBound): a subset of its current planes, so at most its exact cost, less a
+// relative 10⁻⁶ and 10⁻¹⁰ of the diagonal² for rounding. False when no such triangle exists.
+bool BoundingMeshSimplifier::tightenBound(std::uint32_t e) {
+  const auto [a, b] = edgeEnds_[e];
+  std::array<std::uint32_t, 3> hints{};
+  std::size_t hintCount = 0;
+  for (const std::uint32_t t : activeTriangles_[e]) {
+    if (t != kNone && triangleAlive_[t] && (contains(t, a) || contains(t, b))) {
+      hints[hintCount++] = t;
+    }
+  }
+  if (hintCount == 0) return false;
+  const EdgeProblem p = problemOf(e);
+  if (!p.start) return false;
+  halfSpaces_.clear();
+  halfSpaceTriangles_.clear();
+  for (std::size_t i = 0; i < hintCount; ++i) addHalfSpace(hints[i], p.origin);
+  const double minimum =
+      dualMinimumBound(p.quadric, *p.start, p.minimum, halfSpaces_, tolerance_, p.curvatureFloor);
+  edgeState_[e] = EdgeState::Bounded;
+  if (minimum > p.lowerBound) {
+    const double bound = minimum * (1.0 - 1e-6) - costSlack_;
+    if (bound > queue_.key(e)) queue_.set(e, bound);
+  }
+  return true;
+}
+
 // A lower bound of edge e's exact cost after its planes changed. If none of the planes held as
 // equalities at its last optimum changed since, that optimum is still the optimum over the planes
 // that did not change (the KKT conditions involve only the active ones), and adding the changed
 // planes can only raise it: its cost (less a relative 10⁻⁷ for rounding) bounds the new one.
-// Otherwise the unconstrained minimum does.
-double BoundingMeshSimplifier::boundAfterChange(std::uint32_t e) const {
+// Otherwise the unconstrained minimum does. `fromLastCost` tells which.
+double BoundingMeshSimplifier::boundAfterChange(std::uint32_t e, bool& fromLastCost) const {
+  fromLastCost = false;
   if (!activeKnown_[e]) return lowerBounds_[e];
   for (const std::uint32_t t : activeTriangles_[e]) {
     if (t != kNone && (!triangleAlive_[t] || triangleChangedAt_[t] > solvedAt_[e])) {
       return lowerBounds_[e];
     }
   }
+  fromLastCost = true;
   return std::max(lowerBounds_[e], solvedCosts_[e] * (1.0 - 1e-7) - costSlack_);
 }
 
@@ -402,9 +446,10 @@ void BoundingMeshSimplifier::invalidateEdge(std::uint32_t e) {
     queue_.set(e, lowerBounds_[e]);
     return;
   }
-  const double bound = boundAfterChange(e);
-  if (state == EdgeState::Solved || bound < queue_.key(e)) {
-    edgeState_[e] = EdgeState::Lower;
+  bool fromLastCost = false;
+  const double bound = boundAfterChange(e, fromLastCost);
+  if (state != EdgeState::Lower || bound < queue_.key(e)) {  // a tightened bound may not hold now
+    edgeState_[e] = fromLastCost ? EdgeState::Bounded : EdgeState::Lower;
     queue_.set(e, bound);
   }
 }
@@ -724,7 +769,7 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
   edgeListed_.assign(edgeCount, 0);
   solvedCosts_.assign(edgeCount, 0.0);
   solvedAt_.assign(edgeCount, 0);
-  activeTriangles_.resize(edgeCount);
+  activeTriangles_.assign(edgeCount, {kNone, kNone, kNone});
   activeKnown_.assign(edgeCount, 0);
   triangleChangedAt_.assign(triangles_.size(), 0);
   queue_.reset(edgeCount);
@@ -761,11 +806,11 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
     if (!vertexLocked_[edgeEnds_[e][0]] && !vertexLocked_[edgeEnds_[e][1]]) queueEdge(e);
   }
 
-  // Algorithm 2 with a lazy queue. Every queued edge's key is at most its exact cost (the
-  // constrained minimum is at least the unconstrained one), and a popped edge is solved first if it
-  // is not yet: it is contracted only once it is the least by exact cost. So edges are taken in
-  // exactly the order of a queue holding every exact cost (options_.lazyQueue = false), ties broken
-  // by edge id.
+  // Algorithm 2 with a lazy queue. Every queued edge's key is at most its exact cost (a minimum
+  // over fewer planes is at most the minimum over all), and a popped edge is first given a tighter
+  // bound, then solved if it is not yet: it is contracted only once it is the least by exact cost.
+  // So edges are taken in exactly the order of a queue holding every exact cost
+  // (options_.lazyQueue = false), ties broken by edge id.
   const std::size_t target = options_.targetVertices;
   const double maxCost = options_.maxError * options_.maxError;
   const std::size_t toRemove = aliveVertices_ > target ? aliveVertices_ - target : 0;
@@ -782,6 +827,10 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
       continue;
     }
     if (edgeState_[e] == EdgeState::Lower) {
+      if (!tightenBound(e)) solveEdge(e);
+      continue;
+    }
+    if (edgeState_[e] == EdgeState::Bounded) {
       solveEdge(e);
       continue;
     }
