@@ -170,18 +170,20 @@ TEST(ConvexDecomposition, RealLinkReachesTheRequestedEpsilonWhenThePieceBudgetAl
   EXPECT_LE(quality.approximationToOriginal.max, result.stats.epsilon);
 }
 
-// At the defaults (3%, at most 11 pieces) the piece limit stops the splitting of the same link
+// At the defaults (3%, at most 11 pieces) the piece limit stops the splitting of the KR5 elbow
 // before ε; it is still tighter than the reference decomposition's best figure on these links
-// (3.7% of the diagonal, docs/benchmarks.md) and than before merges were priced on the bridge
-// between the pieces (3.31%; 2.65% since), and the reported estimate does not understate it.
+// (3.7% of the diagonal, docs/benchmarks.md), which greedy merging alone missed (4.28%: the
+// look-ahead over the last forced merges chooses other pairs), and the reported estimate does not
+// understate it.
 TEST(ConvexDecomposition, RealLinkAtTheDefaultsIsTighterThanTheReference) {
-  const TriangleMesh mesh = dataMesh("kr5-base-link.stl");
+  const TriangleMesh mesh = dataMesh("kr5-elbow.stl");
   const Decomposition result = decomposeBounding(mesh, {});
   EXPECT_LE(result.pieces.size(), 11u);
   EXPECT_EQ(result.stats.stopReason, "piece limit reached");
   const DecompositionQuality quality =
       measureDecomposition(result.closedInput, result.pieces, 20000, 5);
-  EXPECT_LT(quality.approximationToOriginal.max, 0.03 * quality.diagonal);
+  EXPECT_EQ(quality.uncovered, 0u);
+  EXPECT_LT(quality.approximationToOriginal.max, 0.037 * quality.diagonal);
   EXPECT_LE(quality.approximationToOriginal.max, result.stats.estimatedError);
 }
 

@@ -8,13 +8,17 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <deque>
 #include <exception>
 #include <functional>
+#include <iterator>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <numeric>
 #include <optional>
 #include <thread>
+#include <unordered_map>
 
 #include "kaboum/core/error.hpp"
 #include "kaboum/geometry/bounding_mesh.hpp"
@@ -557,76 +561,209 @@ bool boxesTouch(const Cell& a, const Cell& b, double tolerance) {
   return first.intersects(box(b));
 }
 
-// Greedy merging of neighbouring pieces (touching bounding boxes), the pair whose merged piece
-// has the smallest concavity first: forced while there are more than `maxPieces`, afterwards only
-// while that concavity stays within `budget`. Returns the number of merges. Concavities are
-// measured lazily: a pair's measurement stops once it exceeds the best pair's, leaving a lower
-// bound that is completed only if it could still win (same choices as measuring every pair).
-std::size_t mergeNeighbours(std::vector<Cell>& cells, std::size_t maxPieces, double budget,
-                            const Context& context, double tolerance, std::uint64_t& measured) {
-  struct Pair {
-    std::optional<Cell> merged;
-    std::uint64_t salt = 0;  // of the merged piece's concavity samples
-    bool exact = false;      // merged->concavity is measured, else a lower bound
-  };
-  const std::size_t n = cells.size();
-  std::vector<bool> alive(n, true);
-  std::vector<Pair> pairs(n * n);  // [i * n + j], i < j
-  const auto price = [&](std::size_t i, std::size_t j) {
-    Pair& pair = pairs[i * n + j];
-    pair = Pair{};
-    if (!boxesTouch(cells[i], cells[j], tolerance)) return;
-    pair.merged = mergedCell(cells[i], cells[j], context.snap);
-    if (!pair.merged) return;
-    pair.salt = measured++;
-    pair.merged->concavity = std::max(cells[i].concavity, cells[j].concavity);  // a lower bound
-  };
-  for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t j = i + 1; j < n; ++j) price(i, j);
+// Merging of neighbouring pieces (touching bounding boxes) down to `maxPieces`, then on while the
+// merged concavity stays within `budget`. Greedy takes the pair whose merged piece has the
+// smallest concavity. While at most kLookaheadWindow forced merges are left, each of the
+// kLookaheadWidth cheapest pairs is scored instead by the largest concavity at the piece limit
+// after completing the remaining merges greedily, and the best score wins (greedy's own pair among
+// equals, so the result is never worse than greedy's by this estimate). A piece is identified by
+// the leaves it covers and a state by its pieces, so every merged piece is built and measured
+// once and every greedy completion followed once, however many look-aheads meet them.
+// Concavities are measured lazily: a merged piece starts with its parts' larger concavity as a
+// lower bound; its hull is built and measured only when that bound could win, and the
+// measurement stops once it passes the best pair's (or a completion's bar).
+class MergeSearch {
+ public:
+  MergeSearch(std::vector<Cell>& leaves, const Context& context, double tolerance,
+              std::uint64_t& measured)
+      : context_(context), tolerance_(tolerance), measured_(measured) {
+    for (std::uint32_t i = 0; i < leaves.size(); ++i) {
+      nodes_.push_back(Node{std::move(leaves[i]), {i}, kNone, kNone, 0, true, true, true});
+      byLeaves_.emplace(std::vector<std::uint32_t>{i}, i);
+      alive_.push_back(i);
+    }
   }
-  // The pair whose merged piece has the smallest concavity (the first of equals), or pairs.size().
-  const auto cheapest = [&] {
-    while (true) {
-      std::size_t best = pairs.size(), bound = pairs.size();
-      for (std::size_t k = 0; k < pairs.size(); ++k) {
-        if (!pairs[k].merged) continue;
-        const double concavity = pairs[k].merged->concavity;
-        std::size_t& current = pairs[k].exact ? best : bound;
-        if (current == pairs.size() || concavity < pairs[current].merged->concavity) current = k;
+
+  // Merges as described above; returns the pieces left.
+  std::vector<Cell> run(std::size_t maxPieces, double budget) {
+    constexpr double kNoBar = std::numeric_limits<double>::infinity();
+    while (alive_.size() > 1) {
+      const std::size_t forcedLeft = alive_.size() > maxPieces ? alive_.size() - maxPieces : 0;
+      std::optional<Choice> chosen = cheapest(alive_, {}, kNoBar);
+      if (!chosen) break;
+      if (forcedLeft == 0 && concavity(chosen->node) > budget) break;
+      if (forcedLeft > 1 && forcedLeft <= kLookaheadWindow) chosen = lookahead(*chosen, maxPieces);
+      apply(alive_, *chosen);
+    }
+    std::vector<Cell> pieces;
+    for (const std::uint32_t id : alive_) pieces.push_back(std::move(nodes_[id].cell));
+    return pieces;
+  }
+
+ private:
+  static constexpr std::size_t kLookaheadWindow = 6;
+  static constexpr std::size_t kLookaheadWidth = 12;
+  static constexpr std::uint32_t kNone = 0xffffffffu;
+
+  // A piece: a leaf, or the hull of two pieces (`first`, `second`) covering `leaves` (sorted).
+  struct Node {
+    Cell cell;
+    std::vector<std::uint32_t> leaves;
+    std::uint32_t first, second;
+    std::uint64_t salt;  // of the bridge samples
+    bool built;          // the hull is built
+    bool usable;         // false when the hull has no volume
+    bool exact;          // cell.concavity is measured, else a lower bound
+  };
+  // A merge: the positions of its two pieces in a list of pieces and the merged piece.
+  struct Choice {
+    std::size_t i, j;
+    std::uint32_t node;
+  };
+  // The largest concavity at the piece limit when greedy merging goes on from a state, or a
+  // lower bound of it.
+  struct Outcome {
+    double concavity;
+    bool exact;
+  };
+
+  [[nodiscard]] double concavity(std::uint32_t node) const { return nodes_[node].cell.concavity; }
+
+  // The merged piece of nodes a and b (its hull not built yet), or kNone when they do not touch.
+  std::uint32_t pairNode(std::uint32_t a, std::uint32_t b) {
+    const std::uint64_t key = std::uint64_t{std::min(a, b)} << 32 | std::max(a, b);
+    const auto [entry, inserted] = pairs_.try_emplace(key, kNone);
+    if (!inserted) return entry->second;
+    if (!boxesTouch(nodes_[a].cell, nodes_[b].cell, tolerance_)) return kNone;
+    std::vector<std::uint32_t> leaves;
+    std::merge(nodes_[a].leaves.begin(), nodes_[a].leaves.end(), nodes_[b].leaves.begin(),
+               nodes_[b].leaves.end(), std::back_inserter(leaves));
+    if (const auto known = byLeaves_.find(leaves); known != byLeaves_.end()) {
+      return entry->second = known->second;
+    }
+    const auto id = static_cast<std::uint32_t>(nodes_.size());
+    Node node{Cell{}, leaves, a, b, measured_++, false, true, false};
+    node.cell.concavity = std::max(concavity(a), concavity(b));  // a lower bound
+    nodes_.push_back(std::move(node));
+    byLeaves_.emplace(std::move(leaves), id);
+    return entry->second = id;
+  }
+
+  // Measures the merged piece until its concavity passes `limit`.
+  void measure(Node& node, double limit) {
+    if (!node.built) {
+      node.built = true;
+      std::optional<Cell> merged =
+          mergedCell(nodes_[node.first].cell, nodes_[node.second].cell, context_.snap);
+      if (!merged) {
+        node.usable = false;
+        return;
       }
-      const double limit = best == pairs.size() ? std::numeric_limits<double>::infinity()
-                                                : pairs[best].merged->concavity;
-      if (bound == pairs.size() || pairs[bound].merged->concavity > limit) return best;
-      Pair& pair = pairs[bound];
-      pair.exact = measureMergedConcavity(
-          *pair.merged, cells[bound / n], cells[bound % n], context, pair.salt,
-          std::nextafter(limit, std::numeric_limits<double>::infinity()));
+      merged->concavity = node.cell.concavity;
+      node.cell = std::move(*merged);
     }
-  };
-  std::size_t count = n, merges = 0;
-  while (true) {
-    const std::size_t best = cheapest();
-    if (best == pairs.size()) break;
-    if (count <= maxPieces && pairs[best].merged->concavity > budget) break;
-    const std::size_t i = best / n, j = best % n;
-    cells[i] = std::move(*pairs[best].merged);
-    alive[j] = false;
-    --count;
-    ++merges;
-    for (std::size_t k = 0; k < n; ++k) {
-      pairs[std::min(k, j) * n + std::max(k, j)] = Pair{};
-      if (k != i && alive[k]) price(std::min(k, i), std::max(k, i));
+    node.exact = measureMergedConcavity(
+        node.cell, nodes_[node.first].cell, nodes_[node.second].cell, context_, node.salt,
+        std::nextafter(limit, std::numeric_limits<double>::infinity()));
+  }
+
+  // The pair of `alive` whose merged piece has the smallest concavity (the first of equals in
+  // pair order), skipping merged pieces in `excluded`; nothing when no pair can merge. When that
+  // concavity is at least `bar`, a pair whose concavity (or lower bound) is at least `bar`.
+  std::optional<Choice> cheapest(const std::vector<std::uint32_t>& alive,
+                                 std::span<const Choice> excluded, double bar) {
+    while (true) {
+      std::optional<Choice> best, bound;
+      for (std::size_t i = 0; i < alive.size(); ++i) {
+        for (std::size_t j = i + 1; j < alive.size(); ++j) {
+          const std::uint32_t id = pairNode(alive[i], alive[j]);
+          if (id == kNone || !nodes_[id].usable ||
+              std::any_of(excluded.begin(), excluded.end(),
+                          [&](const Choice& c) { return c.node == id; })) {
+            continue;
+          }
+          std::optional<Choice>& current = nodes_[id].exact ? best : bound;
+          if (!current || concavity(id) < concavity(current->node)) current = Choice{i, j, id};
+        }
+      }
+      const double limit =
+          std::min(best ? concavity(best->node) : std::numeric_limits<double>::infinity(), bar);
+      if (!bound || concavity(bound->node) > limit) return best ? best : bound;
+      measure(nodes_[bound->node], limit);
     }
   }
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!alive[i]) continue;
-    if (kept != i) cells[kept] = std::move(cells[i]);
-    ++kept;
+
+  static void apply(std::vector<std::uint32_t>& alive, const Choice& choice) {
+    alive[choice.i] = choice.node;
+    alive.erase(alive.begin() + static_cast<std::ptrdiff_t>(choice.j));
   }
-  cells.resize(kept);
-  return merges;
-}
+
+  // The largest concavity at the piece limit after `choice` and greedy merges, or infinity when
+  // it is at least `bar` (no better than a score already found).
+  double completion(Choice choice, std::size_t maxPieces, double bar) {
+    constexpr double kAbove = std::numeric_limits<double>::infinity();
+    std::vector<std::uint32_t> alive = alive_;
+    std::vector<std::vector<std::uint32_t>> path;  // the states passed
+    std::optional<double> result;
+    while (concavity(choice.node) < bar) {
+      apply(alive, choice);
+      std::vector<std::uint32_t> state = alive;
+      std::sort(state.begin(), state.end());
+      if (const auto known = outcomes_.find(state); known != outcomes_.end()) {
+        if (known->second.exact) result = known->second.concavity;
+        if (result || known->second.concavity >= bar) break;
+      }
+      path.push_back(std::move(state));
+      const std::optional<Choice> next =
+          alive.size() > maxPieces ? cheapest(alive, {}, bar) : std::nullopt;
+      if (!next) {
+        result = 0.0;
+        for (const std::uint32_t id : alive) *result = std::max(*result, concavity(id));
+        break;
+      }
+      choice = *next;
+    }
+    for (auto& state : path) {
+      Outcome& outcome = outcomes_.try_emplace(std::move(state), Outcome{0.0, false}).first->second;
+      if (result) {
+        outcome = {*result, true};
+      } else if (!outcome.exact) {
+        outcome.concavity = std::max(outcome.concavity, bar);
+      }
+    }
+    return result && *result < bar ? *result : kAbove;
+  }
+
+  // Among the kLookaheadWidth cheapest pairs (`greedy` first), the one with the best completion.
+  Choice lookahead(const Choice& greedy, std::size_t maxPieces) {
+    std::vector<Choice> candidates{greedy};
+    while (candidates.size() < kLookaheadWidth) {
+      const std::optional<Choice> next =
+          cheapest(alive_, candidates, std::numeric_limits<double>::infinity());
+      if (!next) break;
+      candidates.push_back(*next);
+    }
+    Choice best = greedy;
+    double bestScore = completion(greedy, maxPieces, std::numeric_limits<double>::infinity());
+    for (std::size_t k = 1; k < candidates.size(); ++k) {
+      const double score = completion(candidates[k], maxPieces, bestScore);
+      if (score < bestScore) {
+        bestScore = score;
+        best = candidates[k];
+      }
+    }
+    return best;
+  }
+
+  const Context& context_;
+  double tolerance_;
+  std::uint64_t& measured_;
+  std::deque<Node> nodes_;  // stable references while new pieces are added
+  std::map<std::vector<std::uint32_t>, std::uint32_t> byLeaves_;
+  std::unordered_map<std::uint64_t, std::uint32_t> pairs_;  // (smaller, larger id) -> merged
+  std::map<std::vector<std::uint32_t>, Outcome> outcomes_;  // by a state's sorted pieces
+  std::vector<std::uint32_t> alive_;                        // the current pieces, in leaf order
+};
 
 // Largest distance from the points to the convex piece (0 inside), exact.
 double largestDistanceToConvex(const std::vector<Vec3>& points, const ConvexHull& piece) {
@@ -867,8 +1004,10 @@ Decomposition decomposeSharing(const TriangleMesh& mesh, const DecompositionOpti
     }
   }
   for (Cell& cell : open) leaves.push_back(std::move(cell));
-  stats.merges = mergeNeighbours(leaves, options.maxPieces, concavityBudget, context,
-                                 1e-6 * stats.diagonal, measured);
+  const std::size_t leafCount = leaves.size();
+  leaves = MergeSearch(leaves, context, 1e-6 * stats.diagonal, measured)
+               .run(options.maxPieces, concavityBudget);
+  stats.merges = leafCount - leaves.size();
   const bool limited = std::any_of(leaves.begin(), leaves.end(),
                                    [&](const Cell& c) { return c.concavity > concavityBudget; });
   const bool atLimit = stats.splits + 1 >= splitLimit || leaves.size() >= options.maxPieces;
