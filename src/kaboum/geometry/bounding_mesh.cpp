@@ -121,6 +121,7 @@ class BoundingMeshSimplifier {
   void indexAtHubs(std::uint32_t t);
   void unindexAtHubs(std::uint32_t t);
   void placeTriangle(std::uint32_t t, const Box3& box);
+  void invalidateRaised(Hub& hub);
   void gatherNearHubs(const Box3& fanBox, std::uint32_t a, std::uint32_t b, std::uint32_t seen);
   Box3 boxOf(std::uint32_t t) const {
     return triangleBox(positions_[triangles_[t][0]], positions_[triangles_[t][1]],
@@ -160,9 +161,14 @@ class BoundingMeshSimplifier {
     Box3 starBox;
     double minHeight = 0.0, maxEdge = 0.0;
     std::uint32_t unindexed = 0;
+    // Edges at the hub keyed above their plane-independent lower bound (Bounded, Solved or
+    // Infeasible; perhaps some no longer): the only ones a change of its planes must re-key.
+    std::vector<std::uint32_t> raised;
   };
   std::vector<Hub> hubs_;
-  std::vector<std::uint32_t> hubOf_;  // per vertex: its slot in hubs_, or kNone
+  std::vector<std::uint32_t> hubOf_;      // per vertex: its slot in hubs_, or kNone
+  std::vector<std::uint8_t> edgeRaised_;  // listed in the `raised` list of its hub ends
+  void noteRaised(std::uint32_t e);
   std::size_t verticesAtGridBuild_ = 0;
   std::uint32_t stamp_ = 0;
   std::size_t aliveVertices_ = 0;
@@ -313,16 +319,21 @@ void BoundingMeshSimplifier::lockNonManifoldVertices() {
       const int k = tri[0] == v ? 0 : (tri[1] == v ? 1 : 2);
       link.emplace_back(tri[(k + 1) % 3], tri[(k + 2) % 3]);
     });
+    // Walked through the link sorted by first vertex (a binary search per step, not a scan: hubs
+    // have thousands of link edges). Only a link whose edges all start at distinct vertices can be
+    // one cycle, so which of several edges from one vertex is found does not change the verdict.
+    const std::pair<std::uint32_t, std::uint32_t> start = link[0];
+    std::sort(link.begin(), link.end());
     std::size_t steps = 0;
-    std::uint32_t at = link[0].second;
-    while (at != link[0].first && steps < link.size()) {
-      const auto next =
-          std::find_if(link.begin(), link.end(), [&](const auto& e) { return e.first == at; });
-      if (next == link.end()) break;
+    std::uint32_t at = start.second;
+    while (at != start.first && steps < link.size()) {
+      const auto next = std::lower_bound(
+          link.begin(), link.end(), at, [](const auto& e, std::uint32_t x) { return e.first < x; });
+      if (next == link.end() || next->first != at) break;
       at = next->second;
       ++steps;
     }
-    if (at != link[0].first || steps + 1 != link.size()) vertexLocked_[v] = 1;
+    if (at != start.first || steps + 1 != link.size()) vertexLocked_[v] = 1;
   }
 }
 
@@ -390,6 +401,7 @@ EdgeProblem BoundingMeshSimplifier::problemOf(std::uint32_t e) const {
 void BoundingMeshSimplifier::queueEdge(std::uint32_t e) {
   lowerBounds_[e] = problemOf(e).lowerBound;
   edgeState_[e] = EdgeState::Lower;
+  edgeRaised_[e] = 0;  // listed again at its (perhaps new) hub ends when raised
   activeKnown_[e] = 0;
   queue_.set(e, lowerBounds_[e]);
   if (!options_.lazyQueue) solveEdge(e);
@@ -411,6 +423,7 @@ void BoundingMeshSimplifier::solveEdge(std::uint32_t e) {
   const ContractionPoint point =
       p.start ? solveContractionFrom(p.quadric, *p.start, halfSpaces_, tolerance_)
               : solveContraction(p.quadric, halfSpaces_, tolerance_);
+  if (!hubs_.empty()) noteRaised(e);
   if (!point.feasible) {
     edgeState_[e] = EdgeState::Infeasible;
     queue_.set(e, std::numeric_limits<double>::infinity());
@@ -452,6 +465,7 @@ bool BoundingMeshSimplifier::tightenBound(std::uint32_t e) {
   const double minimum =
       dualMinimumBound(p.quadric, *p.start, p.minimum, halfSpaces_, tolerance_, p.curvatureFloor);
   edgeState_[e] = EdgeState::Bounded;
+  if (!hubs_.empty()) noteRaised(e);
   if (minimum > p.lowerBound) {
     const double bound = minimum * (1.0 - 1e-6) - costSlack_;
     if (bound > queue_.key(e)) queue_.set(e, bound);
@@ -671,12 +685,37 @@ void BoundingMeshSimplifier::requeueAround(std::uint32_t a) {
   }
   for (std::uint32_t w : neighbours_) {
     if (vertexLocked_[w]) continue;
+    if (hubOf_[w] != kNone) {  // only its raised edges can need a lower key (see invalidateEdge)
+      invalidateRaised(hubs_[hubOf_[w]]);
+      continue;
+    }
     forEachTriangle(w, [&](std::uint32_t t) {
       const Triangle& tri = triangles_[t];
       const std::uint32_t k = tri[0] == w ? 0 : (tri[1] == w ? 1 : 2);
       if (tri[(k + 1) % 3] != a) invalidateEdge(cornerEdge_[3 * t + k]);
     });
   }
+}
+
+// Invalidates the raised edges of `hub` (all its edges but the Lower ones, whose key, their
+// plane-independent lower bound, invalidateEdge leaves as it is) and forgets those no longer raised
+// or no longer at the hub.
+void BoundingMeshSimplifier::invalidateRaised(Hub& hub) {
+  std::size_t kept = 0;
+  for (const std::uint32_t e : hub.raised) {
+    const EdgeState state = edgeState_[e];
+    const bool atHub = edgeEnds_[e][0] == hub.vertex || edgeEnds_[e][1] == hub.vertex;
+    const bool raised =
+        state == EdgeState::Bounded || state == EdgeState::Solved || state == EdgeState::Infeasible;
+    if (atHub && raised) invalidateEdge(e);
+    if (atHub && (edgeState_[e] == EdgeState::Bounded || edgeState_[e] == EdgeState::Solved ||
+                  edgeState_[e] == EdgeState::Infeasible)) {
+      hub.raised[kept++] = e;
+    } else {
+      edgeRaised_[e] = 0;
+    }
+  }
+  hub.raised.resize(kept);
 }
 
 // The new fan may not cross any other triangle of the mesh nor itself: this keeps outer results
@@ -783,6 +822,17 @@ void BoundingMeshSimplifier::acquireHub(std::uint32_t v) {
   hub.minHeight = std::numeric_limits<double>::infinity();
   hub.maxEdge = 0.0;
   hub.unindexed = 0;
+  hub.raised.clear();  // v's edges are all queued afresh by their lower bounds
+}
+
+// Edge e is now keyed above its lower bound: lists it at its hub ends.
+void BoundingMeshSimplifier::noteRaised(std::uint32_t e) {
+  if (edgeRaised_[e]) return;
+  for (const std::uint32_t v : edgeEnds_[e]) {
+    if (hubOf_[v] == kNone) continue;
+    hubs_[hubOf_[v]].raised.push_back(e);
+    edgeRaised_[e] = 1;
+  }
 }
 
 // The box under which star triangle t of `hub` is indexed: its directions from the hub; empty when
@@ -974,6 +1024,7 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
   edgePositions_.resize(edgeCount);
   parkedVersions_.assign(edgeCount, 0);
   edgeListed_.assign(edgeCount, 0);
+  edgeRaised_.assign(edgeCount, 0);
   solvedCosts_.assign(edgeCount, 0.0);
   solvedAt_.assign(edgeCount, 0);
   activeTriangles_.assign(edgeCount, {kNone, kNone, kNone});
