@@ -815,7 +815,9 @@ void BoundingMeshSimplifier::acquireHub(std::uint32_t v) {
     const double valence = std::max<double>(triangleCount_[v], 1.0);
     const double cellSize = std::max(4.0 * std::numbers::pi / valence, 8.0 * kHubMargin);
     hub.directions = std::make_unique<TriangleGrid>(cellSize, triangleCount_[v]);
-    hub.coarse = std::make_unique<TriangleGrid>(kHubCoarse * cellSize, triangleCount_[v]);
+    // The coarse index holds about one entry per triangle (the fine one a few): a third of the
+    // table and pool keeps its memory at a third.
+    hub.coarse = std::make_unique<TriangleGrid>(kHubCoarse * cellSize, triangleCount_[v] / 3);
   }
   const float inf = std::numeric_limits<float>::infinity();
   hub.starBox = {Eigen::Vector3f::Constant(inf), Eigen::Vector3f::Constant(-inf)};
