@@ -102,7 +102,11 @@ void BoundNextToHighValence(benchmark::State& state) {
   std::size_t contractions = 0;
   double seconds = 0.0;
   for (auto _ : state) {
+    const std::size_t before = liveBytes.load();
+    peakBytes = before;
     const kaboum::BoundingMeshResult result = kaboum::simplifyBounding(mesh, options);
+    state.counters["peak_bytes_per_input_vertex"] =
+        static_cast<double>(peakBytes.load() - before) / static_cast<double>(mesh.vertices.size());
     contractions = result.stats.contractions;
     seconds = result.stats.seconds;
     benchmark::DoNotOptimize(result.mesh.triangles.data());

@@ -270,6 +270,29 @@ TEST(BoundingMesh, LazyQueueGivesTheEagerQueuesResultBitForBit) {
   }
 }
 
+// Issue 2's high-valence case: contractions next to vertices of valence 600–2,000 (the double
+// cone's apexes, the fan centres of a cylinder's caps) go through the angular index of their stars
+// and keep every guarantee.
+TEST(BoundingMesh, HighValenceStarsKeepEveryGuarantee) {
+  const std::pair<TriangleMesh, std::string> inputs[] = {{makeDoubleCone(2000), "double cone"},
+                                                         {makeFannedCylinder(600, 3), "cylinder"}};
+  for (const auto& [mesh, name] : inputs) {
+    for (const BoundSide side : {BoundSide::Outer, BoundSide::Inner}) {
+      BoundingMeshOptions options;
+      options.side = side;
+      options.targetVertices = mesh.vertices.size() / 5;
+      const BoundingMeshResult result = simplifyBounding(mesh, options);
+      const std::string what = name + (side == BoundSide::Outer ? " outer" : " inner");
+      EXPECT_GT(result.stats.contractions, mesh.vertices.size() / 2) << what;
+      expectWellFormed(mesh, result.mesh, what);
+      EXPECT_EQ(countSelfIntersections(result.mesh), 0u) << what;
+      const ContainmentReport check = verifyContainment(mesh, result.mesh, side, 20000, 5);
+      EXPECT_TRUE(check.defined) << what;
+      EXPECT_EQ(check.violations, 0u) << what << " worst " << check.worstViolation;
+    }
+  }
+}
+
 TEST(BoundingMesh, InconsistentOrientationIsAnInputError) {
   TriangleMesh mesh = makeIcosphere(1);
   std::swap(mesh.triangles[0][1], mesh.triangles[0][2]);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "kaboum/geometry/bounded_contraction.hpp"
 #include "kaboum/geometry/indexed_heap.hpp"
 #include "kaboum/geometry/separation_certificate.hpp"
+#include "kaboum/geometry/star_directions.hpp"
 #include "kaboum/geometry/triangle_bvh.hpp"
 #include "kaboum/geometry/triangle_grid.hpp"
 
@@ -20,6 +22,22 @@ namespace kaboum {
 namespace {
 
 constexpr std::uint32_t kNone = 0xffffffffu;
+
+// Vertices of at least this valence are hubs: their stars leave the spatial hash for an angular
+// index (see newFanCrossesMesh). Real robot meshes have valences of at most 40.
+constexpr std::uint32_t kHubValence = 64;
+// A star triangle is left out of a guard query only when the directions of the two triangles from
+// the hub are more than this apart (chord on the unit sphere), and every height involved is at
+// least kHubHeightRatio of the longest edge involved: then the pair stays farther than
+// (2/π)·kHubMargin·kHubHeightRatio > 1e-6 of that edge apart, the separation certificate's margin.
+constexpr double kHubMargin = 2e-4;
+constexpr double kHubHeightRatio = 1e-2;
+// A direction box spanning more cells than this per axis is not indexed (its triangle is enumerated
+// with the whole star instead).
+constexpr double kHubMaxCellSpan = 16.0;
+// The coarse index of a hub, which prunes query pieces far from its star's directions, has cells
+// this many times larger.
+constexpr double kHubCoarse = 16.0;
 
 // Where an edge stands in the greedy loop. A queued edge's key is its exact cost when Solved, and
 // otherwise a lower bound of its cost, see run().
@@ -93,6 +111,18 @@ class BoundingMeshSimplifier {
   enum class Outcome { Done, Topology, Geometry, Crossing };
   bool newFanCrossesMesh(const Contraction& c);
   void buildGrid(double cellSize);
+  struct Hub;
+  bool hasHubCorner(std::uint32_t t) const {
+    return hubOf_[triangles_[t][0]] != kNone || hubOf_[triangles_[t][1]] != kNone ||
+           hubOf_[triangles_[t][2]] != kNone;
+  }
+  void acquireHub(std::uint32_t v);
+  std::optional<Box3> starDirectionBox(const Hub& hub, std::uint32_t t) const;
+  void indexAtHubs(std::uint32_t t);
+  void unindexAtHubs(std::uint32_t t);
+  void placeTriangle(std::uint32_t t, const Box3& box);
+  void invalidateRaised(Hub& hub);
+  void gatherNearHubs(const Box3& fanBox, std::uint32_t a, std::uint32_t b, std::uint32_t seen);
   Box3 boxOf(std::uint32_t t) const {
     return triangleBox(positions_[triangles_[t][0]], positions_[triangles_[t][1]],
                        positions_[triangles_[t][2]]);
@@ -118,7 +148,27 @@ class BoundingMeshSimplifier {
   std::vector<std::uint32_t> markA_, markB_;
   std::vector<std::uint32_t> triangleMark_;  // stamps for excluding/deduplicating triangles
   std::vector<Box3> boxes_;                  // each live triangle's box as registered in grid_
-  std::unique_ptr<TriangleGrid> grid_;
+  std::unique_ptr<TriangleGrid> grid_;       // the live triangles with no hub corner (inGrid_)
+  std::vector<std::uint8_t> inGrid_;
+  // A hub (a vertex of valence ≥ kHubValence) and the angular index of its star: each star
+  // triangle (v, p, q) is registered by the box of its directions from v (directionBox of p, q).
+  struct Hub {
+    std::uint32_t vertex = kNone;
+    std::unique_ptr<TriangleGrid> directions, coarse;  // coarse: kHubCoarse times larger cells
+    // Since the hub last moved: a box containing every star triangle, the least distance from the
+    // hub to a far edge, the longest edge (bounded by a box diagonal), and the star triangles
+    // without a direction box (while there are any, queries enumerate the whole star).
+    Box3 starBox;
+    double minHeight = 0.0, maxEdge = 0.0;
+    std::uint32_t unindexed = 0;
+    // Edges at the hub keyed above their plane-independent lower bound (Bounded, Solved or
+    // Infeasible; perhaps some no longer): the only ones a change of its planes must re-key.
+    std::vector<std::uint32_t> raised;
+  };
+  std::vector<Hub> hubs_;
+  std::vector<std::uint32_t> hubOf_;      // per vertex: its slot in hubs_, or kNone
+  std::vector<std::uint8_t> edgeRaised_;  // listed in the `raised` list of its hub ends
+  void noteRaised(std::uint32_t e);
   std::size_t verticesAtGridBuild_ = 0;
   std::uint32_t stamp_ = 0;
   std::size_t aliveVertices_ = 0;
@@ -269,16 +319,21 @@ void BoundingMeshSimplifier::lockNonManifoldVertices() {
       const int k = tri[0] == v ? 0 : (tri[1] == v ? 1 : 2);
       link.emplace_back(tri[(k + 1) % 3], tri[(k + 2) % 3]);
     });
+    // Walked through the link sorted by first vertex (a binary search per step, not a scan: hubs
+    // have thousands of link edges). Only a link whose edges all start at distinct vertices can be
+    // one cycle, so which of several edges from one vertex is found does not change the verdict.
+    const std::pair<std::uint32_t, std::uint32_t> start = link[0];
+    std::sort(link.begin(), link.end());
     std::size_t steps = 0;
-    std::uint32_t at = link[0].second;
-    while (at != link[0].first && steps < link.size()) {
-      const auto next =
-          std::find_if(link.begin(), link.end(), [&](const auto& e) { return e.first == at; });
-      if (next == link.end()) break;
+    std::uint32_t at = start.second;
+    while (at != start.first && steps < link.size()) {
+      const auto next = std::lower_bound(
+          link.begin(), link.end(), at, [](const auto& e, std::uint32_t x) { return e.first < x; });
+      if (next == link.end() || next->first != at) break;
       at = next->second;
       ++steps;
     }
-    if (at != link[0].first || steps + 1 != link.size()) vertexLocked_[v] = 1;
+    if (at != start.first || steps + 1 != link.size()) vertexLocked_[v] = 1;
   }
 }
 
@@ -346,6 +401,7 @@ EdgeProblem BoundingMeshSimplifier::problemOf(std::uint32_t e) const {
 void BoundingMeshSimplifier::queueEdge(std::uint32_t e) {
   lowerBounds_[e] = problemOf(e).lowerBound;
   edgeState_[e] = EdgeState::Lower;
+  edgeRaised_[e] = 0;  // listed again at its (perhaps new) hub ends when raised
   activeKnown_[e] = 0;
   queue_.set(e, lowerBounds_[e]);
   if (!options_.lazyQueue) solveEdge(e);
@@ -367,6 +423,7 @@ void BoundingMeshSimplifier::solveEdge(std::uint32_t e) {
   const ContractionPoint point =
       p.start ? solveContractionFrom(p.quadric, *p.start, halfSpaces_, tolerance_)
               : solveContraction(p.quadric, halfSpaces_, tolerance_);
+  if (!hubs_.empty()) noteRaised(e);
   if (!point.feasible) {
     edgeState_[e] = EdgeState::Infeasible;
     queue_.set(e, std::numeric_limits<double>::infinity());
@@ -408,6 +465,7 @@ bool BoundingMeshSimplifier::tightenBound(std::uint32_t e) {
   const double minimum =
       dualMinimumBound(p.quadric, *p.start, p.minimum, halfSpaces_, tolerance_, p.curvatureFloor);
   edgeState_[e] = EdgeState::Bounded;
+  if (!hubs_.empty()) noteRaised(e);
   if (minimum > p.lowerBound) {
     const double bound = minimum * (1.0 - 1e-6) - costSlack_;
     if (bound > queue_.key(e)) queue_.set(e, bound);
@@ -528,9 +586,17 @@ BoundingMeshSimplifier::Outcome BoundingMeshSimplifier::contract(std::uint32_t e
   // Execute: b merges into a at the new position.
   ++contractionCount_;
   retireMergedEdges(a, b);
+  // Star triangles of hubs leave the indexes while their geometry changes (placeTriangle below).
+  for (std::uint32_t t : fanA_) {
+    if (!inGrid_[t]) unindexAtHubs(t);
+  }
+  for (std::uint32_t t : fanB_) {
+    if (!inGrid_[t] && !contains(t, a)) unindexAtHubs(t);
+  }
   for (std::uint32_t t : fanA_) {
     if (contains(t, b)) {
-      grid_->remove(t, boxes_[t]);
+      if (inGrid_[t]) grid_->remove(t, boxes_[t]);
+      inGrid_[t] = 0;
       triangleAlive_[t] = 0;
       triangleChangedAt_[t] = contractionCount_;
       for (std::uint32_t w : triangles_[t]) --triangleCount_[w];
@@ -548,19 +614,23 @@ BoundingMeshSimplifier::Outcome BoundingMeshSimplifier::contract(std::uint32_t e
   }
   triangleCount_[a] += triangleCount_[b];
   triangleCount_[b] = 0;
+  const bool hub = hubOf_[a] != kNone || hubOf_[b] != kNone || triangleCount_[a] >= kHubValence;
+  if (hubOf_[b] != kNone) {
+    hubs_[hubOf_[b]].vertex = kNone;
+    hubOf_[b] = kNone;
+  }
   const Vec3 reference = c.position;
   const double length = options_.mergeLength;
   quadrics_[a] = mergeQuadrics(quadrics_[a], quadrics_[b], options_.merge, reference, length);
   positions_[a] = c.position;
   vertexAlive_[b] = 0;
   --aliveVertices_;
+  if (hub) acquireHub(a);
   fanA_.clear();
   forEachTriangle(a, [&](std::uint32_t t) {
     updatePlane(t);
     triangleChangedAt_[t] = contractionCount_;
-    const Box3 box = boxOf(t);
-    grid_->move(t, boxes_[t], box);
-    boxes_[t] = box;
+    placeTriangle(t, boxOf(t));
     fanA_.push_back(t);
   });
 
@@ -615,12 +685,37 @@ void BoundingMeshSimplifier::requeueAround(std::uint32_t a) {
   }
   for (std::uint32_t w : neighbours_) {
     if (vertexLocked_[w]) continue;
+    if (hubOf_[w] != kNone) {  // only its raised edges can need a lower key (see invalidateEdge)
+      invalidateRaised(hubs_[hubOf_[w]]);
+      continue;
+    }
     forEachTriangle(w, [&](std::uint32_t t) {
       const Triangle& tri = triangles_[t];
       const std::uint32_t k = tri[0] == w ? 0 : (tri[1] == w ? 1 : 2);
       if (tri[(k + 1) % 3] != a) invalidateEdge(cornerEdge_[3 * t + k]);
     });
   }
+}
+
+// Invalidates the raised edges of `hub` (all its edges but the Lower ones, whose key, their
+// plane-independent lower bound, invalidateEdge leaves as it is) and forgets those no longer raised
+// or no longer at the hub.
+void BoundingMeshSimplifier::invalidateRaised(Hub& hub) {
+  std::size_t kept = 0;
+  for (const std::uint32_t e : hub.raised) {
+    const EdgeState state = edgeState_[e];
+    const bool atHub = edgeEnds_[e][0] == hub.vertex || edgeEnds_[e][1] == hub.vertex;
+    const bool raised =
+        state == EdgeState::Bounded || state == EdgeState::Solved || state == EdgeState::Infeasible;
+    if (atHub && raised) invalidateEdge(e);
+    if (atHub && (edgeState_[e] == EdgeState::Bounded || edgeState_[e] == EdgeState::Solved ||
+                  edgeState_[e] == EdgeState::Infeasible)) {
+      hub.raised[kept++] = e;
+    } else {
+      edgeRaised_[e] = 0;
+    }
+  }
+  hub.raised.resize(kept);
 }
 
 // The new fan may not cross any other triangle of the mesh nor itself: this keeps outer results
@@ -670,6 +765,7 @@ bool BoundingMeshSimplifier::newFanCrossesMesh(const Contraction& c) {
     triangleMark_[u] = exclude;  // seen
     if (triangleAlive_[u] && fanBox.overlaps(boxes_[u])) nearby_.push_back(u);
   });
+  if (!hubs_.empty()) gatherNearHubs(fanBox, a, b, exclude);
   for (std::size_t i = 0; i < newTriangles_.size(); ++i) {
     for (std::size_t j = i + 1; j < newTriangles_.size(); ++j) {
       if (!certainlyApart(newPlaned_[i], newPlaned_[j]) &&
@@ -699,11 +795,172 @@ bool BoundingMeshSimplifier::newFanCrossesMesh(const Contraction& c) {
 void BoundingMeshSimplifier::buildGrid(double cellSize) {
   grid_ = std::make_unique<TriangleGrid>(cellSize, triangles_.size());
   for (std::uint32_t t = 0; t < triangles_.size(); ++t) {
-    if (!triangleAlive_[t]) continue;
-    boxes_[t] = boxOf(t);
-    grid_->insert(t, boxes_[t]);
+    if (triangleAlive_[t] && inGrid_[t]) grid_->insert(t, boxes_[t]);
   }
   verticesAtGridBuild_ = aliveVertices_;
+}
+
+// Makes v a hub with an empty index (reusing a free slot and its table when there is one), or
+// empties the record of hub v, whose star triangles are all out of its index.
+void BoundingMeshSimplifier::acquireHub(std::uint32_t v) {
+  if (hubOf_[v] == kNone) {
+    std::uint32_t slot = 0;
+    while (slot < hubs_.size() && hubs_[slot].vertex != kNone) ++slot;
+    if (slot == hubs_.size()) hubs_.emplace_back();
+    hubOf_[v] = slot;
+  }
+  Hub& hub = hubs_[hubOf_[v]];
+  hub.vertex = v;
+  if (!hub.directions) {
+    const double valence = std::max<double>(triangleCount_[v], 1.0);
+    const double cellSize = std::max(4.0 * std::numbers::pi / valence, 8.0 * kHubMargin);
+    hub.directions = std::make_unique<TriangleGrid>(cellSize, triangleCount_[v]);
+    // The coarse index holds about one entry per triangle (the fine one a few): a third of the
+    // table and pool keeps its memory at a third.
+    hub.coarse = std::make_unique<TriangleGrid>(kHubCoarse * cellSize, triangleCount_[v] / 3);
+  }
+  const float inf = std::numeric_limits<float>::infinity();
+  hub.starBox = {Eigen::Vector3f::Constant(inf), Eigen::Vector3f::Constant(-inf)};
+  hub.minHeight = std::numeric_limits<double>::infinity();
+  hub.maxEdge = 0.0;
+  hub.unindexed = 0;
+  hub.raised.clear();  // v's edges are all queued afresh by their lower bounds
+}
+
+// Edge e is now keyed above its lower bound: lists it at its hub ends.
+void BoundingMeshSimplifier::noteRaised(std::uint32_t e) {
+  if (edgeRaised_[e]) return;
+  for (const std::uint32_t v : edgeEnds_[e]) {
+    if (hubOf_[v] == kNone) continue;
+    hubs_[hubOf_[v]].raised.push_back(e);
+    edgeRaised_[e] = 1;
+  }
+}
+
+// The box under which star triangle t of `hub` is indexed: its directions from the hub; empty when
+// they cannot be boxed or span too many cells. A function of the current positions only, so the
+// box a triangle was indexed with is found again for removal.
+std::optional<Box3> BoundingMeshSimplifier::starDirectionBox(const Hub& hub,
+                                                             std::uint32_t t) const {
+  const Triangle& tri = triangles_[t];
+  const std::uint32_t k = tri[0] == hub.vertex ? 0 : (tri[1] == hub.vertex ? 1 : 2);
+  const std::array<Vec3, 2> far{positions_[tri[(k + 1) % 3]], positions_[tri[(k + 2) % 3]]};
+  const std::optional<std::array<Vec3, 3>> directions = directionsFrom(positions_[hub.vertex], far);
+  if (!directions) return std::nullopt;
+  const Box3 box = sphericalBox(*directions, 2, 0.0);
+  if ((box.hi - box.lo).maxCoeff() > kHubMaxCellSpan * hub.directions->cellSize()) {
+    return std::nullopt;
+  }
+  return box;
+}
+
+// Registers triangle t, with its current geometry and boxes_[t], in the index of each hub corner.
+void BoundingMeshSimplifier::indexAtHubs(std::uint32_t t) {
+  for (const std::uint32_t v : triangles_[t]) {
+    if (hubOf_[v] == kNone) continue;
+    Hub& hub = hubs_[hubOf_[v]];
+    if (const std::optional<Box3> box = starDirectionBox(hub, t)) {
+      hub.directions->insert(t, *box);
+      hub.coarse->insert(t, *box);
+    } else {
+      ++hub.unindexed;
+    }
+    const Triangle& tri = triangles_[t];
+    const std::uint32_t k = tri[0] == v ? 0 : (tri[1] == v ? 1 : 2);
+    hub.minHeight =
+        std::min(hub.minHeight, pointSegmentDistance(positions_[v], positions_[tri[(k + 1) % 3]],
+                                                     positions_[tri[(k + 2) % 3]]));
+    hub.maxEdge = std::max(hub.maxEdge, std::sqrt(boxes_[t].diagonalSquared()));
+    hub.starBox = {hub.starBox.lo.cwiseMin(boxes_[t].lo), hub.starBox.hi.cwiseMax(boxes_[t].hi)};
+  }
+}
+
+// Removes triangle t, with the geometry it was indexed with, from the index of each hub corner.
+void BoundingMeshSimplifier::unindexAtHubs(std::uint32_t t) {
+  for (const std::uint32_t v : triangles_[t]) {
+    if (hubOf_[v] == kNone) continue;
+    Hub& hub = hubs_[hubOf_[v]];
+    if (const std::optional<Box3> box = starDirectionBox(hub, t)) {
+      hub.directions->remove(t, *box);
+      hub.coarse->remove(t, *box);
+    } else {
+      --hub.unindexed;
+    }
+  }
+}
+
+// Registers triangle t, whose geometry changed and which is in no hub's index, under its new box:
+// in the indexes of its hub corners if it has any, else in the spatial hash.
+void BoundingMeshSimplifier::placeTriangle(std::uint32_t t, const Box3& box) {
+  if (hasHubCorner(t)) {
+    if (inGrid_[t]) grid_->remove(t, boxes_[t]);
+    inGrid_[t] = 0;
+    boxes_[t] = box;
+    indexAtHubs(t);
+    return;
+  }
+  if (inGrid_[t]) {
+    grid_->move(t, boxes_[t], box);
+  } else {
+    grid_->insert(t, box);
+  }
+  inGrid_[t] = 1;
+  boxes_[t] = box;
+}
+
+// Adds to nearby_ the star triangles of hubs (other than a and b) that the new fan might meet,
+// marking them `seen`. Two triangles whose directions from hub v are more than kHubMargin apart
+// stay farther apart than 0.6·kHubMargin times the distance from v to either one's points away from
+// v; the predicate only looks at far edges when they share v. So when every height (hub to a far
+// edge of its star, hub to a new triangle or its far edge) is at least kHubHeightRatio of every
+// edge involved, only the star triangles indexed in a cell the new triangles' grown direction boxes
+// touch can meet them. Otherwise the whole star is listed.
+void BoundingMeshSimplifier::gatherNearHubs(const Box3& fanBox, std::uint32_t a, std::uint32_t b,
+                                            std::uint32_t seen) {
+  const auto add = [&](std::uint32_t u) {
+    if (triangleMark_[u] == seen) return;
+    triangleMark_[u] = seen;
+    if (triangleAlive_[u] && fanBox.overlaps(boxes_[u])) nearby_.push_back(u);
+  };
+  for (Hub& hub : hubs_) {
+    if (hub.vertex == kNone || hub.vertex == a || hub.vertex == b ||
+        !fanBox.overlaps(hub.starBox)) {
+      continue;
+    }
+    const Vec3& apex = positions_[hub.vertex];
+    const double fine = hub.directions->cellSize(), coarse = hub.coarse->cellSize();
+    bool indexed = hub.unindexed == 0;
+    for (const NewTriangle& n : newTriangles_) {
+      if (!indexed) break;
+      if (!n.box.overlaps(hub.starBox)) continue;
+      const std::uint32_t k = n.ids[0] == hub.vertex
+                                  ? 0
+                                  : (n.ids[1] == hub.vertex ? 1 : (n.ids[2] == hub.vertex ? 2 : 3));
+      // A new triangle at the hub is seen from it along its far edge; the predicate ignores the
+      // hub itself.
+      const std::array<Vec3, 2> far{n.corners[(k + 1) % 3], n.corners[(k + 2) % 3]};
+      const double height =
+          k < 3 ? pointSegmentDistance(apex, far[0], far[1])
+                : (closestPointOnTriangle(apex, n.corners[0], n.corners[1], n.corners[2]) - apex)
+                      .norm();
+      const double longest = std::max(hub.maxEdge, std::sqrt(n.sizeSquared));
+      const std::optional<std::array<Vec3, 3>> directions =
+          k < 3 ? directionsFrom(apex, far) : directionsFrom(apex, n.corners);
+      indexed = directions && std::min(height, hub.minHeight) >= kHubHeightRatio * longest;
+      if (!indexed) break;
+      const int count = k < 3 ? 2 : 3;
+      forEachSphericalPiece(*directions, count, kHubMargin, coarse,
+                            [&](const Box3& box, const std::array<Vec3, 3>& piece) {
+                              if (!hub.coarse->anyNear(box)) return;
+                              forEachSphericalPiece(
+                                  piece, count, kHubMargin, fine,
+                                  [&](const Box3& fineBox, const std::array<Vec3, 3>&) {
+                                    hub.directions->forEachNear(fineBox, add);
+                                  });
+                            });
+    }
+    if (!indexed) forEachTriangle(hub.vertex, add);
+  }
 }
 
 // Re-queues the parked edges whose neighbourhood changed since they were parked.
@@ -754,6 +1011,8 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
   triangleAlive_.assign(triangles_.size(), 1);
   triangleMark_.assign(triangles_.size(), 0);
   boxes_.resize(triangles_.size());
+  inGrid_.assign(triangles_.size(), 1);
+  hubOf_.assign(n, kNone);
   normals_.resize(triangles_.size());
   offsets_.resize(triangles_.size());
   crossLengths_.resize(triangles_.size());
@@ -767,6 +1026,7 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
   edgePositions_.resize(edgeCount);
   parkedVersions_.assign(edgeCount, 0);
   edgeListed_.assign(edgeCount, 0);
+  edgeRaised_.assign(edgeCount, 0);
   solvedCosts_.assign(edgeCount, 0.0);
   solvedAt_.assign(edgeCount, 0);
   activeTriangles_.assign(edgeCount, {kNone, kNone, kNone});
@@ -797,6 +1057,14 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
   double edgeLengthSum = 0.0;
   for (const Triangle& t : triangles_) {
     edgeLengthSum += (positions_[t[0]] - positions_[t[1]]).norm();
+  }
+  for (std::uint32_t t = 0; t < triangles_.size(); ++t) boxes_[t] = boxOf(t);
+  for (std::uint32_t v = 0; v < n; ++v) {
+    if (triangleCount_[v] >= kHubValence) acquireHub(v);
+  }
+  for (std::uint32_t t = 0; t < triangles_.size(); ++t) {
+    inGrid_[t] = hasHubCorner(t) ? 0 : 1;
+    if (!inGrid_[t]) indexAtHubs(t);
   }
   buildGrid(
       std::max(2.0 * edgeLengthSum / std::max<double>(1.0, static_cast<double>(triangles_.size())),

@@ -176,6 +176,33 @@ TriangleMesh makeDoubleCone(int rimVertices) {
   return mesh;
 }
 
+TriangleMesh makeFannedCylinder(int segments, int rings, double height) {
+  TriangleMesh mesh;
+  const std::uint32_t n = toIndex(static_cast<std::size_t>(segments));
+  const std::uint32_t rows = toIndex(static_cast<std::size_t>(rings));
+  for (std::uint32_t r = 0; r <= rows; ++r) {
+    for (std::uint32_t k = 0; k < n; ++k) {
+      const double angle = 2.0 * std::numbers::pi * k / n;
+      mesh.vertices.emplace_back(std::cos(angle), std::sin(angle), height * r / rows);
+    }
+  }
+  const std::uint32_t bottom = toIndex(mesh.vertices.size()), top = bottom + 1;
+  mesh.vertices.emplace_back(0.0, 0.0, 0.0);
+  mesh.vertices.emplace_back(0.0, 0.0, height);
+  for (std::uint32_t k = 0; k < n; ++k) {
+    const std::uint32_t next = (k + 1) % n;
+    for (std::uint32_t r = 0; r < rows; ++r) {
+      const std::uint32_t a = r * n + k, b = r * n + next, c = (r + 1) * n + next,
+                          d = (r + 1) * n + k;
+      mesh.triangles.push_back({a, b, c});
+      mesh.triangles.push_back({a, c, d});
+    }
+    mesh.triangles.push_back({bottom, next, k});
+    mesh.triangles.push_back({top, rows * n + k, rows * n + next});
+  }
+  return mesh;
+}
+
 TriangleMesh transformMesh(const TriangleMesh& mesh, double scale, const Vec3& center,
                            const Vec3& offset) {
   TriangleMesh result = mesh;

@@ -30,6 +30,11 @@ TriangleMesh makeLPrism(double height = 1.0);
 // each apex has valence `rimVertices` (the high-valence case of the bounding mesh benchmark).
 TriangleMesh makeDoubleCone(int rimVertices);
 
+// A cylinder of radius 1 around the z axis from z = 0 to `height`: `segments` around, the side
+// split into `rings` rows, each cap a fan around its centre (of valence `segments`): the triangle
+// fans of CAD exports.
+TriangleMesh makeFannedCylinder(int segments, int rings, double height = 1.0);
+
 // Every vertex mapped to center + scale * (v - center) + offset.
 TriangleMesh transformMesh(const TriangleMesh& mesh, double scale, const Vec3& center,
                            const Vec3& offset = Vec3::Zero());

@@ -45,6 +45,18 @@ class TriangleGrid {
         f(entries_[e].triangle);
     });
   }
+  // False only when no cell `box` touches holds a triangle (hash collisions may make it true).
+  [[nodiscard]] bool anyNear(const Box3& box) const {
+    const Eigen::Array3i lo = cellOf(box.lo), hi = cellOf(box.hi);
+    for (int x = lo.x(); x <= hi.x(); ++x) {
+      for (int y = lo.y(); y <= hi.y(); ++y) {
+        for (int z = lo.z(); z <= hi.z(); ++z) {
+          if (heads_[bucketOf(x, y, z)] != kEnd) return true;
+        }
+      }
+    }
+    return false;
+  }
   [[nodiscard]] double cellSize() const { return cellSize_; }
 
  private:
