@@ -52,13 +52,12 @@ void forEachSphericalPiece(const std::array<Vec3, 3>& directions, int count, dou
   const Vec3& d1 = directions[static_cast<std::size_t>((apex + 1) % count)];
   const Vec3& d2 = directions[static_cast<std::size_t>((apex + 2) % count)];
   const double strips = std::clamp(std::ceil(std::sqrt(longest) / extent), 1.0, 4096.0);
-  const int count3 = count == 3 ? 3 : 2;
   Vec3 p = d0, q = d0;  // the strip's near side, on d0d1 and d0d2
   for (int j = 1; j <= static_cast<int>(strips); ++j) {
     const double t = j / strips;
     const Vec3 pNext = ((1.0 - t) * d0 + t * d1).normalized();
-    const Vec3 qNext = count3 == 3 ? ((1.0 - t) * d0 + t * d2).normalized() : pNext;
-    if (count3 == 2) {
+    const Vec3 qNext = count == 3 ? ((1.0 - t) * d0 + t * d2).normalized() : pNext;
+    if (count == 2) {
       const std::array<Vec3, 3> piece{p, pNext, pNext};
       f(sphericalBox(piece, 2, margin), piece);
     } else {
