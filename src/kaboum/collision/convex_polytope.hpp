@@ -235,7 +235,7 @@ inline bool scansBoth(const ConvexPolytope& a, const ConvexPolytope& b) {
 // b's vertices placed in a's frame once per query, so that every support call is two plain
 // scans: no direction or point is transformed inside the loops. Requires scansBoth(a, b).
 // Scalar, AVX2 and AVX-512 builds of the whole query (each scan inlined); the unsuffixed
-// overloads pick one per CPU (GCC function multiversioning).
+// overloads pick one per CPU (GCC function multiversioning). The cache may be null (cold start).
 bool intersectsPlacedScalar(const ConvexPolytope& a, const TransformedSupport& bInA, double margin,
                             const GjkTolerance& tolerance);
 [[gnu::target("avx2")]] bool intersectsPlacedAvx2(const ConvexPolytope& a,
@@ -254,7 +254,6 @@ bool intersectsPlacedScalar(const ConvexPolytope& a, const TransformedSupport& b
 [[gnu::target("avx512f")]] bool intersectsPlaced(const ConvexPolytope& a,
                                                  const TransformedSupport& bInA, double margin,
                                                  const GjkTolerance& tolerance);
-// The distance builds take a's-frame cache, which may be null (cold start).
 DistanceResult distancePlacedScalar(const ConvexPolytope& a, const TransformedSupport& bInA,
                                     LocalPairCache* cache, const GjkTolerance& tolerance);
 [[gnu::target("avx2")]] DistanceResult distancePlacedAvx2(const ConvexPolytope& a,
@@ -277,6 +276,10 @@ DistanceResult distancePlacedScalar(const ConvexPolytope& a, const TransformedSu
                                                          const TransformedSupport& bInA,
                                                          LocalPairCache* cache,
                                                          const GjkTolerance& tolerance);
+
+}  // namespace detail
+
+namespace detail {
 
 // sphereVerdict() with each polytope's sphere centres placed into a common frame by `placeA`
 // and `placeB` (callables Vec3 -> Vec3); the inner balls are only placed when needed.
@@ -331,42 +334,23 @@ inline bool intersects(const ConvexPolytope& a, const TransformedSupport& b, dou
   return intersects<ConvexPolytope, TransformedSupport>(a, b, margin, cache, tolerance);
 }
 
-namespace detail {
-
-// When the inner balls (centres and radii in one frame) overlap, the pair intersects at a point
-// of the segment between their centres that lies in both balls: sets `result` to that contact.
-inline bool innerBallsContact(const Vec3& centerA, double radiusA, const Vec3& centerB,
-                              double radiusB, DistanceResult& result) {
-  const double reach = radiusA + radiusB;
-  if (!(reach > 0.0) || (centerB - centerA).squaredNorm() > reach * reach) return false;
-  result.intersecting = true;
-  result.distance = 0.0;
-  result.pointA = centerA + (radiusA / reach) * (centerB - centerA);
-  result.pointB = result.pointA;
-  return true;
-}
-
-// GJK's distance on the pair, placed builds when both are scanned (no pre-test).
-inline DistanceResult gjkDistance(const ConvexPolytope& a, const TransformedSupport& b,
-                                  GjkCache<ConvexPolytope, TransformedSupport>* cache,
-                                  const GjkTolerance& tolerance) {
-  if (scansBoth(a, b.polytope())) return distancePlaced(a, b, cache, tolerance);
-  return distance<ConvexPolytope, TransformedSupport>(a, b, cache, tolerance);
-}
-
-}  // namespace detail
-
-// The inner-ball pre-test (overlapping inner balls: distance 0), otherwise GJK.
+// When the inner balls overlap, the pair intersects at a point of the segment between their
+// centres that lies in both balls; otherwise GJK.
 inline DistanceResult distance(const ConvexPolytope& a, const TransformedSupport& b,
                                GjkCache<ConvexPolytope, TransformedSupport>* cache = nullptr,
                                const GjkTolerance& tolerance = {}) {
-  DistanceResult result;
-  if (detail::innerBallsContact(a.innerSphereCenter(), a.innerSphereRadius(),
-                                b.place(b.polytope().innerSphereCenter()),
-                                b.polytope().innerSphereRadius(), result)) {
+  const Vec3 centerB = b.place(b.polytope().innerSphereCenter());
+  const double radiusA = a.innerSphereRadius();
+  const double reach = radiusA + b.polytope().innerSphereRadius();
+  if (reach > 0.0 && (centerB - a.innerSphereCenter()).squaredNorm() <= reach * reach) {
+    DistanceResult result;
+    result.intersecting = true;
+    result.pointA = a.innerSphereCenter() + (radiusA / reach) * (centerB - a.innerSphereCenter());
+    result.pointB = result.pointA;
     return result;
   }
-  return detail::gjkDistance(a, b, cache, tolerance);
+  if (detail::scansBoth(a, b.polytope())) return detail::distancePlaced(a, b, cache, tolerance);
+  return distance<ConvexPolytope, TransformedSupport>(a, b, cache, tolerance);
 }
 
 // GJK between two placed polytopes runs in a's local frame: b is placed by the relative pose
@@ -424,19 +408,12 @@ inline bool intersects(const TransformedSupport& a, const TransformedSupport& b,
   });
 }
 
-// The inner-ball pre-test on world-frame centres first, as intersects().
 inline DistanceResult distance(const TransformedSupport& a, const TransformedSupport& b,
                                detail::PlacedPairCache* cache = nullptr,
                                const GjkTolerance& tolerance = {}) {
-  DistanceResult result;
-  if (detail::innerBallsContact(
-          a.place(a.polytope().innerSphereCenter()), a.polytope().innerSphereRadius(),
-          b.place(b.polytope().innerSphereCenter()), b.polytope().innerSphereRadius(), result)) {
-    return result;
-  }
   const TransformedSupport bInA = detail::inFrameOf(a, b);
-  result = detail::withLocalCache(cache, [&](detail::LocalPairCache* local) {
-    return detail::gjkDistance(a.polytope(), bInA, local, tolerance);
+  DistanceResult result = detail::withLocalCache(cache, [&](detail::LocalPairCache* local) {
+    return distance(a.polytope(), bInA, local, tolerance);
   });
   result.pointA = a.place(result.pointA);
   result.pointB = a.place(result.pointB);

@@ -8,7 +8,6 @@
 #include <array>
 #include <cmath>
 
-#include "kaboum/collision/signed_volumes.hpp"
 #include "kaboum/collision/support_mapping.hpp"
 
 namespace kaboum::collision {
@@ -43,6 +42,22 @@ struct DistanceResult {
 
 namespace detail {
 
+// Points of the Minkowski difference a − b and the barycentric weights of the current closest
+// point. reduceSimplex() records in `kept` where each remaining point was before compaction.
+struct Simplex {
+  std::array<Vec3, 4> w;
+  std::array<double, 4> lambda{};
+  std::array<int, 4> kept{};
+  int size = 0;
+
+  [[nodiscard]] bool contains(const Vec3& point) const {
+    for (int i = 0; i < size; ++i) {
+      if (w[i] == point) return true;
+    }
+    return false;
+  }
+};
+
 // The support points on a and b each simplex point came from: distance queries keep them for the
 // witness points, boolean queries do without.
 struct SimplexWitnesses {
@@ -67,6 +82,15 @@ struct SimplexWitnesses {
     return p;
   }
 };
+
+// Signed-volume distance sub-algorithm: keeps the smallest face of the simplex whose hull holds
+// the point closest to the origin, sets its weights and returns that point in `closest`. Returns
+// true when the origin lies inside the tetrahedron (the simplex then keeps its 4 points).
+bool reduceSimplex(Simplex& simplex, Vec3& closest);
+
+// Whether the origin lies strictly inside the tetrahedron (w0, w1, w2, w3): the four signed
+// volumes with the origin in place of each vertex share the sign of the whole volume.
+bool originInsideTetrahedron(const Vec3& w0, const Vec3& w1, const Vec3& w2, const Vec3& w3);
 
 // Directions shorter than this (squared) are not used: squaring them would underflow.
 constexpr double kShortestSquared = 1e-200;
