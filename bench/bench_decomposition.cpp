@@ -4,10 +4,16 @@
 // (../shared, skipped when absent), per link and per whole robot on two threads.
 // Run: build/release/bench/bench_decomposition --benchmark_repetitions=3
 //          --benchmark_report_aggregates_only=true
+// With --seeds=N every link is also decomposed with DecompositionOptions::seed 2..N (the random
+// concavity samples), and counters give the approximation->original distance over the N seeds:
+// single links move by up to ~1% of the diagonal with the seed, so compare changes on that spread.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "kaboum/geometry/convex_decomposition.hpp"
@@ -16,6 +22,8 @@
 namespace {
 
 namespace fs = std::filesystem;
+
+unsigned seedCount = 1;  // --seeds=N
 
 struct Link {
   std::string robot, name;
@@ -55,12 +63,29 @@ void BM_DecomposeLink(benchmark::State& state, const Link* link) {
   }
   const kaboum::DecompositionQuality quality =
       kaboum::measureDecomposition(result.closedInput, result.pieces, 100000, 1);
+  const double percent = 100.0 / quality.diagonal;
+  if (seedCount > 1) {
+    double sum = quality.approximationToOriginal.max, least = sum, most = sum;
+    for (unsigned seed = 2; seed <= seedCount; ++seed) {
+      kaboum::DecompositionOptions seeded = options;
+      seeded.seed = seed;
+      const kaboum::Decomposition other = kaboum::decomposeBounding(link->mesh, seeded);
+      const double distance =
+          kaboum::measureDecomposition(other.closedInput, other.pieces, 100000, 1)
+              .approximationToOriginal.max;
+      sum += distance;
+      least = std::min(least, distance);
+      most = std::max(most, distance);
+    }
+    state.counters["approx_to_orig_max_pct_seed_mean"] = sum / seedCount * percent;
+    state.counters["approx_to_orig_max_pct_seed_min"] = least * percent;
+    state.counters["approx_to_orig_max_pct_seed_max"] = most * percent;
+  }
   std::size_t minVertices = result.stats.totalVertices, maxVertices = 0;
   for (const auto& piece : result.pieces) {
     minVertices = std::min(minVertices, piece.vertices().size());
     maxVertices = std::max(maxVertices, piece.vertices().size());
   }
-  const double percent = 100.0 / quality.diagonal;
   state.counters["input_vertices"] = static_cast<double>(result.stats.inputVertices);
   state.counters["pieces"] = static_cast<double>(result.pieces.size());
   state.counters["vertices"] = static_cast<double>(result.stats.totalVertices);
@@ -114,4 +139,21 @@ const bool registered = [] {
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  // Takes --seeds=N off the command line before Google Benchmark reads the rest.
+  int kept = 1;
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view argument = argv[i];
+    if (argument.starts_with("--seeds=")) {
+      seedCount = static_cast<unsigned>(std::max(1L, std::atol(argv[i] + 8)));
+    } else {
+      argv[kept++] = argv[i];
+    }
+  }
+  argc = kept;
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
