@@ -2,15 +2,42 @@
 // convex query; docs/collision.md, "Pre-tests and the portal test"): the portal test and GJK of
 // gjk.hpp on two plain vertex scans, built whole once per instruction set.
 #include <array>
+#include <numbers>
+
+// fan_test.hpp passes vectors of eight doubles between inlined functions (see there).
+#pragma GCC diagnostic ignored "-Wpsabi"
 
 #include "kaboum/collision/convex_polytope.hpp"
+#include "kaboum/collision/fan_test.hpp"
 #include "kaboum/collision/gjk.hpp"
 #include "kaboum/collision/vertex_scan.hpp"
 
 namespace kaboum::collision::detail {
+
+FanFrame fanFrame() {
+  FanFrame frame{};
+  const auto ring = [&](std::size_t r, std::size_t first, std::size_t count, double degrees,
+                        double turn) {
+    const double tilt = degrees * std::numbers::pi / 180.0;
+    for (std::size_t k = 0; k < count; ++k) {
+      const double angle =
+          2.0 * std::numbers::pi * (static_cast<double>(k) + turn) / static_cast<double>(count);
+      frame.alongU[r][first + k] = std::cos(tilt);
+      frame.alongE1[r][first + k] = std::sin(tilt) * std::cos(angle);
+      frame.alongE2[r][first + k] = std::sin(tilt) * std::sin(angle);
+    }
+  };
+  frame.alongU[0][0] = 1.0;
+  ring(0, 1, 7, 25.0, 0.0);
+  ring(1, 0, 8, 60.0, 0.5);
+  return frame;
+}
+
 namespace {
 
 constexpr std::size_t kMaxChunks = ConvexPolytope::kBruteForceMaxVertices / kLaneWidth;
+
+const FanFrame kFanFrame = fanFrame();
 
 struct ScalarKernels {
   static std::uint32_t scan(const VertexChunk* chunks, std::size_t count, const Vec3& d) {
@@ -20,6 +47,7 @@ struct ScalarKernels {
                     const Vec3& t, VertexChunk* placed) {
     placeChunksScalar(chunks, count, r, t, placed);
   }
+  static constexpr bool kFan = false;
 };
 
 struct Avx2Kernels {
@@ -32,6 +60,7 @@ struct Avx2Kernels {
                                             VertexChunk* placed) {
     placeChunksAvx2(chunks, count, r, t, placed);
   }
+  static constexpr bool kFan = false;
 };
 
 struct Avx512Kernels {
@@ -44,17 +73,53 @@ struct Avx512Kernels {
                                                VertexChunk* placed) {
     placeChunksAvx512(chunks, count, r, t, placed);
   }
+  // The fan test (fan_test.hpp) and its kernels.
+  static constexpr bool kFan = true;
+  [[gnu::target("avx512f")]] static bool anyPositive(const Lanes& lanes) {
+    return _mm512_cmp_pd_mask(reinterpret_cast<__m512d>(lanes), _mm512_setzero_pd(), _CMP_GT_OQ) !=
+           0;
+  }
+  [[gnu::target("avx512f")]] static double inverseSquareRoot(double x) {
+    const __m128d value = _mm_set_sd(x);
+    return _mm_cvtsd_f64(_mm_rsqrt14_sd(value, value));
+  }
+  // One chunk: a lane permutation per coordinate; more: gathers (vertex i sits at double
+  // 24·(i / 8) + i % 8 of the chunk array, plus 8 for y and 16 for z).
+  [[gnu::target("avx512f")]] static void gather(const VertexChunk* chunks, std::size_t count,
+                                                const LaneIntegers& vertex, LanePoints& p) {
+    // Vector-extension shuffles and explicit gather sources rather than the intrinsics that
+    // start from _mm512_undefined_pd() (-Wmaybe-uninitialized, GCC bug 105593).
+    if (count == 1) {
+      p.x = __builtin_shuffle(reinterpret_cast<Lanes>(_mm512_load_pd(chunks->x.data())), vertex);
+      p.y = __builtin_shuffle(reinterpret_cast<Lanes>(_mm512_load_pd(chunks->y.data())), vertex);
+      p.z = __builtin_shuffle(reinterpret_cast<Lanes>(_mm512_load_pd(chunks->z.data())), vertex);
+      return;
+    }
+    // Vertex i sits at double 24·(i / 8) + i % 8 = 3·i − 2·(i % 8) of the chunks (x; y and z
+    // follow 8 and 16 doubles later).
+    const auto offset =
+        reinterpret_cast<__m512i>(vertex + (vertex << 1) - ((vertex & (LaneIntegers{} + 7)) << 1));
+    const double* base = chunks->x.data();
+    const __m512d none = _mm512_setzero_pd();
+    p.x = reinterpret_cast<Lanes>(_mm512_mask_i64gather_pd(none, 0xFF, offset, base, 8));
+    p.y =
+        reinterpret_cast<Lanes>(_mm512_mask_i64gather_pd(none, 0xFF, offset, base + kLaneWidth, 8));
+    p.z = reinterpret_cast<Lanes>(
+        _mm512_mask_i64gather_pd(none, 0xFF, offset, base + 2 * kLaneWidth, 8));
+  }
 };
 
 // Vertex chunks already in the query frame: the support is a scan and a read. Hints are a
-// ConvexPolytope's (the vertex index), so caches carry over. Satisfies SupportMapping.
+// ConvexPolytope's (the vertex index), so caches carry over. Satisfies VertexSupport.
 template <class Kernels>
 struct ScannedChunks {
   using Hint = ConvexPolytope::Hint;
 
   Vec3 support(const Vec3& direction, Hint& hint) const {
-    const std::uint32_t index = Kernels::scan(chunks, count, direction);
-    hint.vertex = index;
+    hint.vertex = Kernels::scan(chunks, count, direction);
+    return vertex(hint.vertex);
+  }
+  [[nodiscard]] Vec3 vertex(std::uint32_t index) const {
     const VertexChunk& chunk = chunks[index / kLaneWidth];
     const std::uint32_t lane = index % kLaneWidth;
     return {chunk.x[lane], chunk.y[lane], chunk.z[lane]};
@@ -88,14 +153,16 @@ template <class Kernels>
 bool intersectsPlacedWith(const ConvexPolytope& a, const TransformedSupport& bInA, double margin,
                           const GjkTolerance& tolerance) {
   const PlacedPair<Kernels> pair(a, bInA);
+  if constexpr (Kernels::kFan) {
+    const PairVerdict fanned =
+        fanVerdict<Kernels>(kFanFrame, pair.first, pair.second, margin, tolerance, nullptr);
+    if (fanned != PairVerdict::unknown) return fanned == PairVerdict::intersecting;
+  }
   const PairVerdict verdict = portalIntersects(pair.first, pair.second, margin, tolerance);
   if (verdict != PairVerdict::unknown) return verdict == PairVerdict::intersecting;
-  Simplex simplex;
-  double lowerBound = 0.0;
-  int iterations = 0;
   using Chunks = ScannedChunks<Kernels>;
-  return runGjk<true, Chunks, Chunks>(pair.first, pair.second, margin, nullptr, tolerance, simplex,
-                                      nullptr, lowerBound, iterations) != GjkExit::separated;
+  return runGjk<true, Chunks, Chunks>(pair.first, pair.second, margin, nullptr, tolerance).exit !=
+         GjkExit::separated;
 }
 
 template <class Kernels>
