@@ -139,15 +139,28 @@ namespace fan {
 
 }  // namespace fan
 
-// The fan test on a and b (ScannedChunks of placed_pair.cpp: vertex chunks in one frame, their
-// centres interior points). First the support point p0 along u alone (a − b's support towards the
-// origin, as the portal test starts): `separated` when it certifies p0·u < −(margin +
-// absolute)·|u|. Then the fan: `separated` when one of its sixteen support points certifies the
-// same along its direction, `intersecting` when the origin lies strictly inside one of 23
+// GJK's first support points for a and b (ScannedChunks of placed_pair.cpp: vertex chunks in one
+// frame, their centres interior points), along −v0 and v0 for v0 = centre(a) − centre(b): the
+// point of a − b farthest towards the origin from v0 (the portal test's first support too). True
+// when it certifies a separation beyond `separation` (GJK's early exit).
+template <class Chunks>
+[[gnu::always_inline]] inline bool firstSupportSeparates(const Chunks& a, const Chunks& b,
+                                                         double separation,
+                                                         GjkFirstSupport<Chunks, Chunks>& first) {
+  const Vec3 v0 = a.center() - b.center();
+  first.pointA = a.support(-v0, first.hintA);
+  first.pointB = b.support(v0, first.hintB);
+  const double wv = (first.pointA - first.pointB).dot(v0);
+  return wv > 0.0 && wv * wv > separation * separation * v0.squaredNorm();
+}
+
+// The fan test on a and b (as above; run after firstSupportSeparates() said no): `separated`
+// when one of its sixteen support points p along d certifies p·d < −(margin + absolute)·|d| (the
+// portal test's certificate), `intersecting` when the origin lies strictly inside one of 23
 // tetrahedra of the interior point and three support points (each a point of a − b; the
 // tetrahedron goes to `tetrahedron` when not null), else `unknown`. Kernels provides
-// `gather(chunks, count, vertex, points)` (the lanes' vertices), `anyPositive(lanes)` (a lane > 0,
-// NaN lanes not) and `inverseSquareRoot(x)` (approximate).
+// `gather(chunks, count, vertex, points)` (the lanes' vertices), `anyPositive(lanes)` (a lane >
+// 0, NaN lanes not) and `inverseSquareRoot(x)` (approximate).
 template <class Kernels, class Chunks>
 [[gnu::always_inline]] inline PairVerdict fanVerdict(const FanFrame& frame, const Chunks& a,
                                                      const Chunks& b, double margin,
@@ -158,14 +171,6 @@ template <class Kernels, class Chunks>
   const double lengthSquared = v0.squaredNorm();
   if (!(lengthSquared > kShortestSquared)) return PairVerdict::unknown;
   const double separation = margin + tolerance.absolute;
-  {
-    typename Chunks::Hint hintA, hintB;
-    const Vec3 p0 = a.support(-v0, hintA) - b.support(v0, hintB);
-    const double pd = -p0.dot(v0);
-    if (pd < 0.0 && pd * pd > separation * separation * lengthSquared) {
-      return PairVerdict::separated;
-    }
-  }
   // u need not be exactly of unit length: only the fan's spread depends on it, every certificate
   // uses the directions as computed.
   const Vec3 u = -v0 * Kernels::inverseSquareRoot(lengthSquared);

@@ -92,13 +92,22 @@ struct GjkRun {
   GjkExit exit = GjkExit::stalled;
 };
 
+// The support points of a cold query's first iteration (a's along −v, b's along v, for v =
+// center(a) − center(b)) and the hints they leave, when a pre-test computed them already.
+template <SupportMapping A, SupportMapping B>
+struct GjkFirstSupport {
+  Vec3 pointA, pointB;
+  typename A::Hint hintA{};
+  typename B::Hint hintB{};
+};
+
 // The GJK loop. Boolean mode stops as soon as a support point certifies distance > margin +
 // tolerance.absolute, or the simplex comes within margin + tolerance.absolute of the origin;
 // distance mode runs to convergence, tracks the best certified lower bound and records where each
-// simplex point came from.
+// simplex point came from. `first` (cold queries only) replaces the first support calls.
 template <bool kBoolean, SupportMapping A, SupportMapping B>
 auto runGjk(const A& a, const B& b, double margin, GjkCache<A, B>* cache,
-            const GjkTolerance& tolerance) {
+            const GjkTolerance& tolerance, const GjkFirstSupport<A, B>* first = nullptr) {
   using Origin = std::conditional_t<kBoolean, NoOrigin, SupportOrigin<A, B>>;
   GjkRun<Origin> run;
   Simplex<Origin>& simplex = run.simplex;
@@ -117,8 +126,16 @@ auto runGjk(const A& a, const B& b, double margin, GjkCache<A, B>* cache,
   for (run.iterations = 1; run.iterations <= tolerance.maxIterations; ++run.iterations) {
     // w minimises x.v over a − b, so x.v >= w.v for every x: the plane through w normal to v
     // bounds the distance from below by w.v / |v|.
-    const Vec3 pointA = a.support(-v, hintA);
-    const Vec3 pointB = b.support(v, hintB);
+    Vec3 pointA, pointB;
+    if (first != nullptr && run.iterations == 1) {
+      pointA = first->pointA;
+      pointB = first->pointB;
+      hintA = first->hintA;
+      hintB = first->hintB;
+    } else {
+      pointA = a.support(-v, hintA);
+      pointB = b.support(v, hintB);
+    }
     const Vec3 w = pointA - pointB;
     const double vv = v.squaredNorm();
     const double wv = w.dot(v);
@@ -165,6 +182,20 @@ auto runGjk(const A& a, const B& b, double margin, GjkCache<A, B>* cache,
     cache->hintB = hintB;
   }
   return run;
+}
+
+// A distance query's answer from its GJK run: the witness points from the simplex's origins.
+template <SupportMapping A, SupportMapping B, class Run>
+DistanceResult distanceResult(const Run& run, const A& a, const B& b) {
+  DistanceResult result;
+  result.iterations = run.iterations;
+  result.intersecting = run.exit == GjkExit::intersecting;
+  result.distance = result.intersecting ? 0.0 : run.lowerBound;
+  for (int i = 0; i < run.simplex.size; ++i) {
+    result.pointA += run.simplex.lambda[i] * run.simplex.origin[i].onA(a);
+    result.pointB += run.simplex.lambda[i] * run.simplex.origin[i].onB(b);
+  }
+  return result;
 }
 
 }  // namespace detail
@@ -289,16 +320,7 @@ bool intersects(const A& a, const B& b, double margin = 0.0, GjkCache<A, B>* cac
 template <SupportMapping A, SupportMapping B>
 DistanceResult distance(const A& a, const B& b, GjkCache<A, B>* cache = nullptr,
                         const GjkTolerance& tolerance = {}) {
-  const auto run = detail::runGjk<false>(a, b, 0.0, cache, tolerance);
-  DistanceResult result;
-  result.iterations = run.iterations;
-  result.intersecting = run.exit == detail::GjkExit::intersecting;
-  result.distance = result.intersecting ? 0.0 : run.lowerBound;
-  for (int i = 0; i < run.simplex.size; ++i) {
-    result.pointA += run.simplex.lambda[i] * run.simplex.origin[i].onA(a);
-    result.pointB += run.simplex.lambda[i] * run.simplex.origin[i].onB(b);
-  }
-  return result;
+  return detail::distanceResult(detail::runGjk<false>(a, b, 0.0, cache, tolerance), a, b);
 }
 
 }  // namespace kaboum::collision

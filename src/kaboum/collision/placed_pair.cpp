@@ -152,17 +152,37 @@ struct PlacedPair {
 template <class Kernels>
 bool intersectsPlacedWith(const ConvexPolytope& a, const TransformedSupport& bInA, double margin,
                           const GjkTolerance& tolerance) {
+  using Chunks = ScannedChunks<Kernels>;
   const PlacedPair<Kernels> pair(a, bInA);
   if constexpr (Kernels::kFan) {
+    GjkFirstSupport<Chunks, Chunks> first;
+    if (firstSupportSeparates(pair.first, pair.second, margin + tolerance.absolute, first)) {
+      return false;
+    }
     const PairVerdict fanned =
         fanVerdict<Kernels>(kFanFrame, pair.first, pair.second, margin, tolerance, nullptr);
     if (fanned != PairVerdict::unknown) return fanned == PairVerdict::intersecting;
   }
   const PairVerdict verdict = portalIntersects(pair.first, pair.second, margin, tolerance);
   if (verdict != PairVerdict::unknown) return verdict == PairVerdict::intersecting;
-  using Chunks = ScannedChunks<Kernels>;
   return runGjk<true, Chunks, Chunks>(pair.first, pair.second, margin, nullptr, tolerance).exit !=
          GjkExit::separated;
+}
+
+// Distance 0 and the common witness point of an intersection the fan test certified: the
+// origin's barycentric combination of the tetrahedron's points, formed on a and on b.
+template <class Kernels>
+DistanceResult commonPoint(const PlacedPair<Kernels>& pair, const FanTetrahedron& tetrahedron) {
+  DistanceResult result;
+  result.intersecting = true;
+  result.iterations = 1;
+  result.pointA = tetrahedron.weight[0] * pair.first.center();
+  result.pointB = tetrahedron.weight[0] * pair.second.center();
+  for (std::size_t k = 1; k < 4; ++k) {
+    result.pointA += tetrahedron.weight[k] * pair.first.vertex(tetrahedron.vertexA[k]);
+    result.pointB += tetrahedron.weight[k] * pair.second.vertex(tetrahedron.vertexB[k]);
+  }
+  return result;
 }
 
 template <class Kernels>
@@ -170,8 +190,24 @@ DistanceResult distancePlacedWith(const ConvexPolytope& a, const TransformedSupp
                                   LocalPairCache* cache, const GjkTolerance& tolerance) {
   const PlacedPair<Kernels> pair(a, bInA);
   using Chunks = ScannedChunks<Kernels>;
-  if (cache == nullptr)
+  if (cache == nullptr) {
+    if constexpr (Kernels::kFan) {
+      // Pairs not separated along GJK's first direction mostly overlap: the fan test certifies
+      // that for most, with the origin's tetrahedron giving a common witness point.
+      GjkFirstSupport<Chunks, Chunks> first;
+      if (!firstSupportSeparates(pair.first, pair.second, tolerance.absolute, first)) {
+        FanTetrahedron tetrahedron;
+        if (fanVerdict<Kernels>(kFanFrame, pair.first, pair.second, 0.0, tolerance, &tetrahedron) ==
+            PairVerdict::intersecting) {
+          return commonPoint(pair, tetrahedron);
+        }
+      }
+      return distanceResult(
+          runGjk<false, Chunks, Chunks>(pair.first, pair.second, 0.0, nullptr, tolerance, &first),
+          pair.first, pair.second);
+    }
     return distance<Chunks, Chunks>(pair.first, pair.second, nullptr, tolerance);
+  }
   GjkCache<Chunks, Chunks> local{cache->direction, cache->hintA, cache->hintB};
   const DistanceResult result = distance(pair.first, pair.second, &local, tolerance);
   *cache = {local.direction, local.hintA, local.hintB};
