@@ -303,7 +303,8 @@ TEST(Gjk, DegenerateConfigurationsAreAnsweredSafely) {
 }
 
 // Pose after pose of a slowly moving pair, one cache: the same answers as cold queries, and the
-// warm start pays off.
+// warm start pays off where both run GJK to a distance (a cold query on overlapping polytopes
+// may be decided by the fan test in one round instead).
 TEST(Gjk, WarmStartGivesTheSameAnswersInFewerIterations) {
   for (const int n : {8, 64}) {
     const auto pair = randomPolytopePairs(1, n, 21).front();
@@ -325,8 +326,10 @@ TEST(Gjk, WarmStartGivesTheSameAnswersInFewerIterations) {
       const DistanceResult warmDistance = distance(a, b, &distanceCache);
       const DistanceResult coldDistance = distance(a, b);
       ASSERT_NEAR(warmDistance.distance, coldDistance.distance, 1e-8) << "step " << step;
-      warmIterations += warmDistance.iterations;
-      coldIterations += coldDistance.iterations;
+      if (!coldDistance.intersecting) {
+        warmIterations += warmDistance.iterations;
+        coldIterations += coldDistance.iterations;
+      }
     }
     EXPECT_GT(hits, 0);
     EXPECT_LT(hits, 401);

@@ -199,7 +199,13 @@ DistanceResult distancePlacedWith(const ConvexPolytope& a, const TransformedSupp
         FanTetrahedron tetrahedron;
         if (fanVerdict<Kernels>(kFanFrame, pair.first, pair.second, 0.0, tolerance, &tetrahedron) ==
             PairVerdict::intersecting) {
-          return commonPoint(pair, tetrahedron);
+          // A nearly flat tetrahedron (the origin on its plane, as for touching pairs) has
+          // weights too rounded to give one point: GJK decides those.
+          const DistanceResult result = commonPoint(pair, tetrahedron);
+          if ((result.pointA - result.pointB).squaredNorm() <=
+              tolerance.absolute * tolerance.absolute) {
+            return result;
+          }
         }
       }
       return distanceResult(
