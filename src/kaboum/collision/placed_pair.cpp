@@ -149,19 +149,31 @@ struct PlacedPair {
   ScannedChunks<Kernels> second;
 };
 
+// Polytopes of up to this many chunks (16 vertices) go through the fan test: it reads every
+// vertex once per direction, and from 32 vertices on it cost more than the portal test it saves
+// (docs/benchmarks.md).
+constexpr std::size_t kFanMaxChunks = 2;
+
+template <class Kernels>
+bool fanApplies(const PlacedPair<Kernels>& pair) {
+  return pair.first.count <= kFanMaxChunks && pair.second.count <= kFanMaxChunks;
+}
+
 template <class Kernels>
 bool intersectsPlacedWith(const ConvexPolytope& a, const TransformedSupport& bInA, double margin,
                           const GjkTolerance& tolerance) {
   using Chunks = ScannedChunks<Kernels>;
   const PlacedPair<Kernels> pair(a, bInA);
   if constexpr (Kernels::kFan) {
-    GjkFirstSupport<Chunks, Chunks> first;
-    if (firstSupportSeparates(pair.first, pair.second, margin + tolerance.absolute, first)) {
-      return false;
+    if (fanApplies(pair)) {
+      GjkFirstSupport<Chunks, Chunks> first;
+      if (firstSupportSeparates(pair.first, pair.second, margin + tolerance.absolute, first)) {
+        return false;
+      }
+      const PairVerdict fanned =
+          fanVerdict<Kernels>(kFanFrame, pair.first, pair.second, margin, tolerance, nullptr);
+      if (fanned != PairVerdict::unknown) return fanned == PairVerdict::intersecting;
     }
-    const PairVerdict fanned =
-        fanVerdict<Kernels>(kFanFrame, pair.first, pair.second, margin, tolerance, nullptr);
-    if (fanned != PairVerdict::unknown) return fanned == PairVerdict::intersecting;
   }
   const PairVerdict verdict = portalIntersects(pair.first, pair.second, margin, tolerance);
   if (verdict != PairVerdict::unknown) return verdict == PairVerdict::intersecting;
@@ -185,6 +197,31 @@ DistanceResult commonPoint(const PlacedPair<Kernels>& pair, const FanTetrahedron
   return result;
 }
 
+// A cold distance query through the fan test first: pairs not separated along GJK's first
+// direction mostly overlap, and the fan certifies that for most, the origin's tetrahedron giving a
+// common witness point; GJK (reusing that first support) answers the others.
+template <class Kernels>
+DistanceResult distanceAfterFan(const PlacedPair<Kernels>& pair, const GjkTolerance& tolerance) {
+  using Chunks = ScannedChunks<Kernels>;
+  GjkFirstSupport<Chunks, Chunks> first;
+  if (!firstSupportSeparates(pair.first, pair.second, tolerance.absolute, first)) {
+    FanTetrahedron tetrahedron;
+    if (fanVerdict<Kernels>(kFanFrame, pair.first, pair.second, 0.0, tolerance, &tetrahedron) ==
+        PairVerdict::intersecting) {
+      // A nearly flat tetrahedron (the origin on its plane, as for touching pairs) has weights
+      // too rounded to give one point: GJK decides those.
+      const DistanceResult result = commonPoint(pair, tetrahedron);
+      if ((result.pointA - result.pointB).squaredNorm() <=
+          tolerance.absolute * tolerance.absolute) {
+        return result;
+      }
+    }
+  }
+  return distanceResult(
+      runGjk<false, Chunks, Chunks>(pair.first, pair.second, 0.0, nullptr, tolerance, &first),
+      pair.first, pair.second);
+}
+
 template <class Kernels>
 DistanceResult distancePlacedWith(const ConvexPolytope& a, const TransformedSupport& bInA,
                                   LocalPairCache* cache, const GjkTolerance& tolerance) {
@@ -192,25 +229,7 @@ DistanceResult distancePlacedWith(const ConvexPolytope& a, const TransformedSupp
   using Chunks = ScannedChunks<Kernels>;
   if (cache == nullptr) {
     if constexpr (Kernels::kFan) {
-      // Pairs not separated along GJK's first direction mostly overlap: the fan test certifies
-      // that for most, with the origin's tetrahedron giving a common witness point.
-      GjkFirstSupport<Chunks, Chunks> first;
-      if (!firstSupportSeparates(pair.first, pair.second, tolerance.absolute, first)) {
-        FanTetrahedron tetrahedron;
-        if (fanVerdict<Kernels>(kFanFrame, pair.first, pair.second, 0.0, tolerance, &tetrahedron) ==
-            PairVerdict::intersecting) {
-          // A nearly flat tetrahedron (the origin on its plane, as for touching pairs) has
-          // weights too rounded to give one point: GJK decides those.
-          const DistanceResult result = commonPoint(pair, tetrahedron);
-          if ((result.pointA - result.pointB).squaredNorm() <=
-              tolerance.absolute * tolerance.absolute) {
-            return result;
-          }
-        }
-      }
-      return distanceResult(
-          runGjk<false, Chunks, Chunks>(pair.first, pair.second, 0.0, nullptr, tolerance, &first),
-          pair.first, pair.second);
+      if (fanApplies(pair)) return distanceAfterFan(pair, tolerance);
     }
     return distance<Chunks, Chunks>(pair.first, pair.second, nullptr, tolerance);
   }
