@@ -281,6 +281,13 @@ DistanceResult distancePlacedScalar(const ConvexPolytope& a, const TransformedSu
                                                          LocalPairCache* cache,
                                                          const GjkTolerance& tolerance);
 
+// The fan test of the AVX-512 build (fan_test.hpp: GJK's first support, then sixteen support
+// directions at once) as the boolean query runs it after the sphere tests, on b placed in a's
+// frame; `unknown` where it does not run (polytopes above 16 vertices, CPUs without AVX-512).
+// For tests and the benchmark's decision counts.
+PairVerdict fanPretest(const ConvexPolytope& a, const TransformedSupport& bInA, double margin,
+                       const GjkTolerance& tolerance);
+
 }  // namespace detail
 
 namespace detail {

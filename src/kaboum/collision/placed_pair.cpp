@@ -159,22 +159,31 @@ bool fanApplies(const PlacedPair<Kernels>& pair) {
   return pair.first.count <= kFanMaxChunks && pair.second.count <= kFanMaxChunks;
 }
 
+// The boolean query's fan pre-test: GJK's first support, then the fan (`unknown` where the fan
+// does not apply).
+template <class Kernels>
+PairVerdict fanPretest(const PlacedPair<Kernels>& pair, double margin,
+                       const GjkTolerance& tolerance) {
+  if constexpr (Kernels::kFan) {
+    if (fanApplies(pair)) {
+      using Chunks = ScannedChunks<Kernels>;
+      GjkFirstSupport<Chunks, Chunks> first;
+      if (firstSupportSeparates(pair.first, pair.second, margin + tolerance.absolute, first)) {
+        return PairVerdict::separated;
+      }
+      return fanVerdict<Kernels>(kFanFrame, pair.first, pair.second, margin, tolerance, nullptr);
+    }
+  }
+  return PairVerdict::unknown;
+}
+
 template <class Kernels>
 bool intersectsPlacedWith(const ConvexPolytope& a, const TransformedSupport& bInA, double margin,
                           const GjkTolerance& tolerance) {
   using Chunks = ScannedChunks<Kernels>;
   const PlacedPair<Kernels> pair(a, bInA);
-  if constexpr (Kernels::kFan) {
-    if (fanApplies(pair)) {
-      GjkFirstSupport<Chunks, Chunks> first;
-      if (firstSupportSeparates(pair.first, pair.second, margin + tolerance.absolute, first)) {
-        return false;
-      }
-      const PairVerdict fanned =
-          fanVerdict<Kernels>(kFanFrame, pair.first, pair.second, margin, tolerance, nullptr);
-      if (fanned != PairVerdict::unknown) return fanned == PairVerdict::intersecting;
-    }
-  }
+  const PairVerdict fanned = fanPretest(pair, margin, tolerance);
+  if (fanned != PairVerdict::unknown) return fanned == PairVerdict::intersecting;
   const PairVerdict verdict = portalIntersects(pair.first, pair.second, margin, tolerance);
   if (verdict != PairVerdict::unknown) return verdict == PairVerdict::intersecting;
   return runGjk<true, Chunks, Chunks>(pair.first, pair.second, margin, nullptr, tolerance).exit !=
@@ -239,7 +248,21 @@ DistanceResult distancePlacedWith(const ConvexPolytope& a, const TransformedSupp
   return result;
 }
 
+[[gnu::target("avx512f"), gnu::flatten]] PairVerdict fanPretestAvx512(
+    const ConvexPolytope& a, const TransformedSupport& bInA, double margin,
+    const GjkTolerance& tolerance) {
+  return fanPretest(PlacedPair<Avx512Kernels>(a, bInA), margin, tolerance);
+}
+
 }  // namespace
+
+PairVerdict fanPretest(const ConvexPolytope& a, const TransformedSupport& bInA, double margin,
+                       const GjkTolerance& tolerance) {
+  if (!__builtin_cpu_supports("avx512f") || !scansBoth(a, bInA.polytope())) {
+    return PairVerdict::unknown;
+  }
+  return fanPretestAvx512(a, bInA, margin, tolerance);
+}
 
 // flatten: the portal and GJK loops, and the scans in them, are compiled into each build.
 [[gnu::flatten]] bool intersectsPlacedScalar(const ConvexPolytope& a,
