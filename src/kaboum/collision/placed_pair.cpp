@@ -7,6 +7,16 @@
 // fan_test.hpp passes vectors of eight doubles between inlined functions (see there).
 #pragma GCC diagnostic ignored "-Wpsabi"
 
+// Each per-instruction-set query below is compiled whole (flatten: the portal test, the fan test,
+// GJK and the scans inlined into one function). Not in sanitizer builds (GCC defines
+// __SANITIZE_ADDRESS__): instrumented, the flattened queries took minutes to compile, and there
+// only the answers matter.
+#ifdef __SANITIZE_ADDRESS__
+#define KABOUM_WHOLE_QUERY
+#else
+#define KABOUM_WHOLE_QUERY gnu::flatten
+#endif
+
 #include "kaboum/collision/convex_polytope.hpp"
 #include "kaboum/collision/fan_test.hpp"
 #include "kaboum/collision/gjk.hpp"
@@ -248,7 +258,7 @@ DistanceResult distancePlacedWith(const ConvexPolytope& a, const TransformedSupp
   return result;
 }
 
-[[gnu::target("avx512f"), gnu::flatten]] PairVerdict fanPretestAvx512(
+[[gnu::target("avx512f"), KABOUM_WHOLE_QUERY]] PairVerdict fanPretestAvx512(
     const ConvexPolytope& a, const TransformedSupport& bInA, double margin,
     const GjkTolerance& tolerance) {
   return fanPretest(PlacedPair<Avx512Kernels>(a, bInA), margin, tolerance);
@@ -264,19 +274,17 @@ PairVerdict fanPretest(const ConvexPolytope& a, const TransformedSupport& bInA, 
   return fanPretestAvx512(a, bInA, margin, tolerance);
 }
 
-// flatten: the portal and GJK loops, and the scans in them, are compiled into each build.
-[[gnu::flatten]] bool intersectsPlacedScalar(const ConvexPolytope& a,
-                                             const TransformedSupport& bInA, double margin,
-                                             const GjkTolerance& tolerance) {
+[[KABOUM_WHOLE_QUERY]] bool intersectsPlacedScalar(const ConvexPolytope& a,
+                                                   const TransformedSupport& bInA, double margin,
+                                                   const GjkTolerance& tolerance) {
   return intersectsPlacedWith<ScalarKernels>(a, bInA, margin, tolerance);
 }
-[[gnu::target("avx2"), gnu::flatten]] bool intersectsPlacedAvx2(const ConvexPolytope& a,
-                                                                const TransformedSupport& bInA,
-                                                                double margin,
-                                                                const GjkTolerance& tolerance) {
+[[gnu::target("avx2"), KABOUM_WHOLE_QUERY]] bool intersectsPlacedAvx2(
+    const ConvexPolytope& a, const TransformedSupport& bInA, double margin,
+    const GjkTolerance& tolerance) {
   return intersectsPlacedWith<Avx2Kernels>(a, bInA, margin, tolerance);
 }
-[[gnu::target("avx512f"), gnu::flatten]] bool intersectsPlacedAvx512(
+[[gnu::target("avx512f"), KABOUM_WHOLE_QUERY]] bool intersectsPlacedAvx512(
     const ConvexPolytope& a, const TransformedSupport& bInA, double margin,
     const GjkTolerance& tolerance) {
   return intersectsPlacedWith<Avx512Kernels>(a, bInA, margin, tolerance);
@@ -297,18 +305,18 @@ PairVerdict fanPretest(const ConvexPolytope& a, const TransformedSupport& bInA, 
   return intersectsPlacedAvx512(a, bInA, margin, tolerance);
 }
 
-[[gnu::flatten]] DistanceResult distancePlacedScalar(const ConvexPolytope& a,
-                                                     const TransformedSupport& bInA,
-                                                     LocalPairCache* cache,
-                                                     const GjkTolerance& tolerance) {
+[[KABOUM_WHOLE_QUERY]] DistanceResult distancePlacedScalar(const ConvexPolytope& a,
+                                                           const TransformedSupport& bInA,
+                                                           LocalPairCache* cache,
+                                                           const GjkTolerance& tolerance) {
   return distancePlacedWith<ScalarKernels>(a, bInA, cache, tolerance);
 }
-[[gnu::target("avx2"), gnu::flatten]] DistanceResult distancePlacedAvx2(
+[[gnu::target("avx2"), KABOUM_WHOLE_QUERY]] DistanceResult distancePlacedAvx2(
     const ConvexPolytope& a, const TransformedSupport& bInA, LocalPairCache* cache,
     const GjkTolerance& tolerance) {
   return distancePlacedWith<Avx2Kernels>(a, bInA, cache, tolerance);
 }
-[[gnu::target("avx512f"), gnu::flatten]] DistanceResult distancePlacedAvx512(
+[[gnu::target("avx512f"), KABOUM_WHOLE_QUERY]] DistanceResult distancePlacedAvx512(
     const ConvexPolytope& a, const TransformedSupport& bInA, LocalPairCache* cache,
     const GjkTolerance& tolerance) {
   return distancePlacedWith<Avx512Kernels>(a, bInA, cache, tolerance);
