@@ -33,8 +33,8 @@ struct LanePoints {
 // The fan's sixteen directions, two registers of eight, as coefficients on an orthonormal frame
 // (u, e1, e2) where u points from the interior point centre(a) − centre(b) to the origin: lane 0
 // is u itself, lanes 1–7 a ring of seven at 25° from it, lanes 8–15 a ring of eight at 60°
-// (turned by half a step). Chosen on the random pair workload (N = 8: 92% of the pairs the
-// sphere tests leave are decided; docs/benchmarks.md).
+// (turned by half a step). Chosen on the random pair workload (it decides 91% of the pairs the
+// sphere tests leave at N = 8, 87% at N = 16; docs/benchmarks.md).
 struct FanFrame {
   std::array<Lanes, 2> alongU, alongE1, alongE2;
 };
