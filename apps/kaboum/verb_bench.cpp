@@ -275,10 +275,11 @@ std::vector<MethodReport> measureAll(const std::vector<PolytopePair>& pairs,
 }
 
 // How kaboum's cold boolean query decides the pairs (in this order): bounding spheres apart,
-// inner balls overlapping (sphereVerdict), the portal test (portalIntersects), else GJK.
+// inner balls overlapping (sphereVerdict), the fan test (AVX-512 build, up to 16 vertices), the
+// portal test (portalIntersects), else GJK.
 nlohmann::json kaboumDecisions(const std::vector<PolytopePair>& pairs) {
   using collision::PairVerdict;
-  int spheresApart = 0, innerBallsOverlap = 0, portal = 0, gjk = 0;
+  int spheresApart = 0, innerBallsOverlap = 0, fan = 0, portal = 0, gjk = 0;
   for (const PolytopePair& pair : pairs) {
     const collision::ConvexPolytope a(pair.localA), b(pair.localB);
     const collision::TransformedSupport bInA(b, pair.poseA.inverse() * pair.poseB);
@@ -287,6 +288,8 @@ nlohmann::json kaboumDecisions(const std::vector<PolytopePair>& pairs) {
       ++spheresApart;
     } else if (spheres == PairVerdict::intersecting) {
       ++innerBallsOverlap;
+    } else if (collision::detail::fanPretest(a, bInA, 0.0, {}) != PairVerdict::unknown) {
+      ++fan;
     } else if (collision::portalIntersects(a, bInA) != PairVerdict::unknown) {
       ++portal;
     } else {
@@ -295,6 +298,7 @@ nlohmann::json kaboumDecisions(const std::vector<PolytopePair>& pairs) {
   }
   return {{"bounding_spheres_apart", spheresApart},
           {"inner_balls_overlap", innerBallsOverlap},
+          {"fan", fan},
           {"portal", portal},
           {"gjk", gjk}};
 }
@@ -346,10 +350,10 @@ nlohmann::json runPairSection(const CollisionBenchOptions& options) {
           options.runs);
       std::printf(
           "kaboum boolean decided by: bounding spheres apart %d, inner balls overlapping %d, "
-          "portal test %d, GJK %d\n",
+          "fan test %d, portal test %d, GJK %d\n",
           decisions["bounding_spheres_apart"].get<int>(),
-          decisions["inner_balls_overlap"].get<int>(), decisions["portal"].get<int>(),
-          decisions["gjk"].get<int>());
+          decisions["inner_balls_overlap"].get<int>(), decisions["fan"].get<int>(),
+          decisions["portal"].get<int>(), decisions["gjk"].get<int>());
       std::printf("%-25s %10s %8s %11s %8s %7s %10s %7s %9s %10s\n", "method", "bool ns", "ratio",
                   "dist ns", "ratio", "missed", "deepest", "alarms", "dist>true", "largest");
       for (const MethodReport& r : reports) {

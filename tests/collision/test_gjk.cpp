@@ -49,6 +49,8 @@ struct Tally {
   int wrongVerdicts = 0;    // sphereVerdict() or portalIntersects() contradicting the reference
   int portalQueries = 0;    // portalIntersects() calls (both margins)
   int portalUndecided = 0;  // ... that answered `unknown`
+  int fanQueries = 0;       // detail::fanPretest() calls on pairs the sphere tests leave
+  int fanDecided = 0;       // ... that answered `separated` or `intersecting`
   std::string firstFailure;
 
   void fail(int& counter, const std::string& what) {
@@ -143,10 +145,10 @@ void checkVerdict(PairVerdict verdict, double truth, double margin, Tally& tally
   }
 }
 
-// The public queries (checkPair); the two conservative tests they start with, each on its own
-// (sphereVerdict() and portalIntersects() in a's frame); and, for pairs the scan handles, every
-// build of the placed queries (scalar, and AVX2 / AVX-512 where the CPU has them), whatever this
-// CPU picks.
+// The public queries (checkPair); the conservative tests they start with, each on its own
+// (sphereVerdict(), the AVX-512 build's fan test and portalIntersects() in a's frame); and, for
+// pairs the scan handles, every build of the placed queries (scalar, and AVX2 / AVX-512 where the
+// CPU has them), whatever this CPU picks.
 void checkPolytopePair(const PolytopePair& pair, Tally& tally, const std::string& label) {
   const ConvexPolytope polytopeA(pair.localA);
   const ConvexPolytope polytopeB(pair.localB);
@@ -204,6 +206,12 @@ void checkPolytopePair(const PolytopePair& pair, Tally& tally, const std::string
     checkVerdict(portal, truth, margin, tally, what + " portal");
     ++tally.portalQueries;
     if (portal == PairVerdict::unknown) ++tally.portalUndecided;
+    const PairVerdict fan = detail::fanPretest(polytopeA, bInA, margin, GjkTolerance{});
+    checkVerdict(fan, truth, margin, tally, what + " fan");
+    if (sphereVerdict(polytopeA, bInA, margin) == PairVerdict::unknown) {
+      ++tally.fanQueries;
+      if (fan != PairVerdict::unknown) ++tally.fanDecided;
+    }
   }
 }
 
@@ -217,6 +225,11 @@ TEST(Gjk, AgreesWithTheExactReferenceOnRandomPolytopes) {
     tally.expectClean();
     // The portal test leaves GJK only the pairs it cannot certify (near contact, degenerate).
     EXPECT_LT(tally.portalUndecided, tally.portalQueries / 20);
+    // Where the fan test runs (AVX-512, up to 16 vertices), it decides most pairs the sphere
+    // tests leave (the rest go to the portal test).
+    if (__builtin_cpu_supports("avx512f") && n <= 16) {
+      EXPECT_GT(tally.fanDecided, tally.fanQueries * 4 / 5);
+    }
     // The workload is the issue's: about 40% of the pairs overlap.
     EXPECT_NEAR(static_cast<double>(tally.overlapping) / tally.pairs, 0.4, 0.08);
   }
@@ -303,7 +316,8 @@ TEST(Gjk, DegenerateConfigurationsAreAnsweredSafely) {
 }
 
 // Pose after pose of a slowly moving pair, one cache: the same answers as cold queries, and the
-// warm start pays off.
+// warm start pays off where both run GJK to a distance (a cold query on overlapping polytopes
+// may be decided by the fan test in one round instead).
 TEST(Gjk, WarmStartGivesTheSameAnswersInFewerIterations) {
   for (const int n : {8, 64}) {
     const auto pair = randomPolytopePairs(1, n, 21).front();
@@ -325,8 +339,10 @@ TEST(Gjk, WarmStartGivesTheSameAnswersInFewerIterations) {
       const DistanceResult warmDistance = distance(a, b, &distanceCache);
       const DistanceResult coldDistance = distance(a, b);
       ASSERT_NEAR(warmDistance.distance, coldDistance.distance, 1e-8) << "step " << step;
-      warmIterations += warmDistance.iterations;
-      coldIterations += coldDistance.iterations;
+      if (!coldDistance.intersecting) {
+        warmIterations += warmDistance.iterations;
+        coldIterations += coldDistance.iterations;
+      }
     }
     EXPECT_GT(hits, 0);
     EXPECT_LT(hits, 401);

@@ -7,7 +7,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <type_traits>
 
+#include "kaboum/collision/simplex.hpp"
 #include "kaboum/collision/support_mapping.hpp"
 
 namespace kaboum::collision {
@@ -42,69 +45,72 @@ struct DistanceResult {
 
 namespace detail {
 
-// Points of the Minkowski difference a − b and the barycentric weights of the current closest
-// point. reduceSimplex() records in `kept` where each remaining point was before compaction.
-struct Simplex {
-  std::array<Vec3, 4> w;
-  std::array<double, 4> lambda{};
-  std::array<int, 4> kept{};
-  int size = 0;
-
-  [[nodiscard]] bool contains(const Vec3& point) const {
-    for (int i = 0; i < size; ++i) {
-      if (w[i] == point) return true;
-    }
-    return false;
-  }
-};
-
-// The support points on a and b each simplex point came from: distance queries keep them for the
-// witness points, boolean queries do without.
-struct SimplexWitnesses {
-  std::array<Vec3, 4> a;
-  std::array<Vec3, 4> b;
-
-  // Follows the simplex's last compaction.
-  void compact(const Simplex& simplex) {
-    for (int i = 0; i < simplex.size; ++i) {
-      a[i] = a[simplex.kept[i]];
-      b[i] = b[simplex.kept[i]];
-    }
-  }
-  [[nodiscard]] Vec3 pointA(const Simplex& simplex) const {
-    Vec3 p = Vec3::Zero();
-    for (int i = 0; i < simplex.size; ++i) p += simplex.lambda[i] * a[i];
-    return p;
-  }
-  [[nodiscard]] Vec3 pointB(const Simplex& simplex) const {
-    Vec3 p = Vec3::Zero();
-    for (int i = 0; i < simplex.size; ++i) p += simplex.lambda[i] * b[i];
-    return p;
-  }
-};
-
-// Signed-volume distance sub-algorithm: keeps the smallest face of the simplex whose hull holds
-// the point closest to the origin, sets its weights and returns that point in `closest`. Returns
-// true when the origin lies inside the tetrahedron (the simplex then keeps its 4 points).
-bool reduceSimplex(Simplex& simplex, Vec3& closest);
-
-// Whether the origin lies strictly inside the tetrahedron (w0, w1, w2, w3): the four signed
-// volumes with the origin in place of each vertex share the sign of the whole volume.
-bool originInsideTetrahedron(const Vec3& w0, const Vec3& w1, const Vec3& w2, const Vec3& w3);
-
 // Directions shorter than this (squared) are not used: squaring them would underflow.
 constexpr double kShortestSquared = 1e-200;
 
+// A support mapping whose support points are vertices it can give again by index (the index is
+// in its hint after each support call): distance queries keep the indices of the simplex's points
+// and form the witness points once at the end.
+template <class Shape>
+concept VertexSupport = SupportMapping<Shape> &&
+    requires(const Shape& shape, const typename Shape::Hint& hint) {
+  { shape.vertex(hint.vertex) } -> std::same_as<Vec3>;
+};
+
+// Where a simplex point of a − b came from, for the witness points: the support points of a and
+// b themselves, or their vertex indices when both shapes are VertexSupport.
+template <class A, class B>
+struct SupportOrigin {
+  Vec3 a, b;
+  static SupportOrigin of(const Vec3& pointA, const Vec3& pointB, const typename A::Hint&,
+                          const typename B::Hint&) {
+    return {pointA, pointB};
+  }
+  [[nodiscard]] Vec3 onA(const A&) const { return a; }
+  [[nodiscard]] Vec3 onB(const B&) const { return b; }
+};
+template <VertexSupport A, VertexSupport B>
+struct SupportOrigin<A, B> {
+  std::uint32_t a = 0, b = 0;
+  static SupportOrigin of(const Vec3&, const Vec3&, const typename A::Hint& hintA,
+                          const typename B::Hint& hintB) {
+    return {hintA.vertex, hintB.vertex};
+  }
+  [[nodiscard]] Vec3 onA(const A& shape) const { return shape.vertex(a); }
+  [[nodiscard]] Vec3 onB(const B& shape) const { return shape.vertex(b); }
+};
+
 enum class GjkExit { separated, intersecting, converged, stalled };
+
+// What the GJK loop ends with: the simplex (its points' origins for distance queries), the best
+// certified lower bound (distance mode), the iterations run and why it stopped.
+template <class Origin>
+struct GjkRun {
+  Simplex<Origin> simplex;
+  double lowerBound = 0.0;
+  int iterations = 0;
+  GjkExit exit = GjkExit::stalled;
+};
+
+// The support points of a cold query's first iteration (a's along −v, b's along v, for v =
+// center(a) − center(b)) and the hints they leave, when a pre-test computed them already.
+template <SupportMapping A, SupportMapping B>
+struct GjkFirstSupport {
+  Vec3 pointA, pointB;
+  typename A::Hint hintA{};
+  typename B::Hint hintB{};
+};
 
 // The GJK loop. Boolean mode stops as soon as a support point certifies distance > margin +
 // tolerance.absolute, or the simplex comes within margin + tolerance.absolute of the origin;
-// distance mode runs to convergence and tracks the best certified lower bound.
-// Distance mode records the support points in `witnesses`; boolean mode passes nullptr.
+// distance mode runs to convergence, tracks the best certified lower bound and records where each
+// simplex point came from. `first` (cold queries only) replaces the first support calls.
 template <bool kBoolean, SupportMapping A, SupportMapping B>
-GjkExit runGjk(const A& a, const B& b, double margin, GjkCache<A, B>* cache,
-               const GjkTolerance& tolerance, Simplex& simplex,
-               [[maybe_unused]] SimplexWitnesses* witnesses, double& lowerBound, int& iterations) {
+auto runGjk(const A& a, const B& b, double margin, GjkCache<A, B>* cache,
+            const GjkTolerance& tolerance, const GjkFirstSupport<A, B>* first = nullptr) {
+  using Origin = std::conditional_t<kBoolean, NoOrigin, SupportOrigin<A, B>>;
+  GjkRun<Origin> run;
+  Simplex<Origin>& simplex = run.simplex;
   typename A::Hint hintA{};
   typename B::Hint hintB{};
   Vec3 v = Vec3::Zero();
@@ -117,44 +123,47 @@ GjkExit runGjk(const A& a, const B& b, double margin, GjkCache<A, B>* cache,
   if (!(v.squaredNorm() > kShortestSquared)) v = Vec3::UnitX();
 
   const double separation = margin + tolerance.absolute;
-  simplex.size = 0;
-  lowerBound = 0.0;
-  GjkExit exit = GjkExit::stalled;
-  for (iterations = 1; iterations <= tolerance.maxIterations; ++iterations) {
+  for (run.iterations = 1; run.iterations <= tolerance.maxIterations; ++run.iterations) {
     // w minimises x.v over a − b, so x.v >= w.v for every x: the plane through w normal to v
     // bounds the distance from below by w.v / |v|.
-    const Vec3 pointA = a.support(-v, hintA);
-    const Vec3 pointB = b.support(v, hintB);
+    Vec3 pointA, pointB;
+    if (first != nullptr && run.iterations == 1) {
+      pointA = first->pointA;
+      pointB = first->pointB;
+      hintA = first->hintA;
+      hintB = first->hintB;
+    } else {
+      pointA = a.support(-v, hintA);
+      pointB = b.support(v, hintB);
+    }
     const Vec3 w = pointA - pointB;
     const double vv = v.squaredNorm();
     const double wv = w.dot(v);
     if constexpr (kBoolean) {
       if (wv > 0.0 && wv * wv > separation * separation * vv) {
-        exit = GjkExit::separated;
+        run.exit = GjkExit::separated;
         break;
       }
-    } else if (wv > 0.0) {
-      lowerBound = std::max(lowerBound, wv / std::sqrt(vv));
+    } else {
+      // (A negative w.v bounds nothing, and loses to the initial 0.)
+      run.lowerBound = std::max(run.lowerBound, wv / std::sqrt(vv));
     }
     // Once v is a point of the simplex (hence of a − b), |v| bounds the distance from above.
     if (simplex.size > 0) {
       const double norm = std::sqrt(vv);
       if (vv - wv <= (tolerance.absolute + tolerance.relative * norm) * norm) {
-        exit = GjkExit::converged;
+        run.exit = GjkExit::converged;
         break;
       }
       if (simplex.contains(w)) break;
     }
     if constexpr (!kBoolean) {
-      witnesses->a[simplex.size] = pointA;
-      witnesses->b[simplex.size] = pointB;
+      simplex.origin[simplex.size] = Origin::of(pointA, pointB, hintA, hintB);
     }
     simplex.w[simplex.size++] = w;
     const bool hadUpperBound = simplex.size > 1;
-    const bool inside = reduceSimplex(simplex, v);
-    if constexpr (!kBoolean) witnesses->compact(simplex);
-    if (inside) {
-      exit = GjkExit::intersecting;
+    if (reduceSimplex(simplex, v)) {
+      run.exit = GjkExit::intersecting;
       break;
     }
     const double closestSquared = v.squaredNorm();
@@ -162,7 +171,7 @@ GjkExit runGjk(const A& a, const B& b, double margin, GjkCache<A, B>* cache,
     // |v| >= tolerance.absolute, far from underflow in the certificate above).
     const double touching = kBoolean ? separation : tolerance.absolute;
     if (closestSquared <= touching * touching) {
-      exit = GjkExit::intersecting;
+      run.exit = GjkExit::intersecting;
       break;
     }
     if (hadUpperBound && closestSquared >= vv) break;  // no progress: rounding dominates
@@ -172,7 +181,21 @@ GjkExit runGjk(const A& a, const B& b, double margin, GjkCache<A, B>* cache,
     cache->hintA = hintA;
     cache->hintB = hintB;
   }
-  return exit;
+  return run;
+}
+
+// A distance query's answer from its GJK run: the witness points from the simplex's origins.
+template <SupportMapping A, SupportMapping B, class Run>
+DistanceResult distanceResult(const Run& run, const A& a, const B& b) {
+  DistanceResult result;
+  result.iterations = run.iterations;
+  result.intersecting = run.exit == GjkExit::intersecting;
+  result.distance = result.intersecting ? 0.0 : run.lowerBound;
+  for (int i = 0; i < run.simplex.size; ++i) {
+    result.pointA += run.simplex.lambda[i] * run.simplex.origin[i].onA(a);
+    result.pointB += run.simplex.lambda[i] * run.simplex.origin[i].onB(b);
+  }
+  return result;
 }
 
 }  // namespace detail
@@ -288,11 +311,7 @@ bool intersects(const A& a, const B& b, double margin = 0.0, GjkCache<A, B>* cac
     const PairVerdict verdict = portalIntersects(a, b, margin, tolerance);
     if (verdict != PairVerdict::unknown) return verdict == PairVerdict::intersecting;
   }
-  detail::Simplex simplex;
-  double lowerBound = 0.0;
-  int iterations = 0;
-  return detail::runGjk<true>(a, b, margin, cache, tolerance, simplex, nullptr, lowerBound,
-                              iterations) != detail::GjkExit::separated;
+  return detail::runGjk<true>(a, b, margin, cache, tolerance).exit != detail::GjkExit::separated;
 }
 
 // Separation distance and witness points. The distance never exceeds the true distance (beyond
@@ -301,16 +320,7 @@ bool intersects(const A& a, const B& b, double margin = 0.0, GjkCache<A, B>* cac
 template <SupportMapping A, SupportMapping B>
 DistanceResult distance(const A& a, const B& b, GjkCache<A, B>* cache = nullptr,
                         const GjkTolerance& tolerance = {}) {
-  detail::Simplex simplex;
-  detail::SimplexWitnesses witnesses;
-  DistanceResult result;
-  const detail::GjkExit exit = detail::runGjk<false>(
-      a, b, 0.0, cache, tolerance, simplex, &witnesses, result.distance, result.iterations);
-  result.intersecting = exit == detail::GjkExit::intersecting;
-  if (result.intersecting) result.distance = 0.0;
-  result.pointA = witnesses.pointA(simplex);
-  result.pointB = witnesses.pointB(simplex);
-  return result;
+  return detail::distanceResult(detail::runGjk<false>(a, b, 0.0, cache, tolerance), a, b);
 }
 
 }  // namespace kaboum::collision
