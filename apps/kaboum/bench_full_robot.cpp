@@ -153,11 +153,12 @@ std::vector<double> medianTimes(std::size_t count, int runs, std::vector<char>& 
 
 // How kaboum's narrow phase decides the robot-piece / obstacle-piece pairs whose world boxes
 // overlap, over all `poses` (every such pair, without the early exit of a real check): bounding
-// spheres apart, inner balls overlapping, the portal test, else GJK.
+// spheres apart, inner balls overlapping, the fan test (AVX-512 build, up to 16 vertices), the
+// portal test, else GJK.
 nlohmann::json narrowPhaseDecisions(const RobotCollisionModel& robot, const CollisionScene& scene,
                                     const std::vector<std::vector<Pose>>& poses) {
   using collision::PairVerdict;
-  long boxesOverlap = 0, spheresApart = 0, innerBallsOverlap = 0, portal = 0, gjk = 0;
+  long boxesOverlap = 0, spheresApart = 0, innerBallsOverlap = 0, fan = 0, portal = 0, gjk = 0;
   std::vector<std::vector<collision::Aabb>> obstacleBoxes(scene.size());
   for (std::size_t o = 0; o < scene.size(); ++o) {
     for (std::size_t q = 0; q < scene.body(o).pieceCount(); ++q) {
@@ -182,6 +183,9 @@ nlohmann::json narrowPhaseDecisions(const RobotCollisionModel& robot, const Coll
               ++spheresApart;
             } else if (spheres == PairVerdict::intersecting) {
               ++innerBallsOverlap;
+            } else if (collision::detail::fanPretest(body.piece(p), obstacle, 0.0, {}) !=
+                       PairVerdict::unknown) {
+              ++fan;
             } else if (collision::portalIntersects(body.piece(p), obstacle) !=
                        PairVerdict::unknown) {
               ++portal;
@@ -196,6 +200,7 @@ nlohmann::json narrowPhaseDecisions(const RobotCollisionModel& robot, const Coll
   return {{"boxes_overlap", boxesOverlap},
           {"bounding_spheres_apart", spheresApart},
           {"inner_balls_overlap", innerBallsOverlap},
+          {"fan", fan},
           {"portal", portal},
           {"gjk", gjk}};
 }
@@ -390,8 +395,9 @@ void printFullRobotBench(const nlohmann::json& figures, std::ostream& out) {
     out << "  kaboum narrow phase on " << decided["boxes_overlap"].get<long>()
         << " box-overlapping piece pairs: bounding spheres apart "
         << decided["bounding_spheres_apart"].get<long>() << ", inner balls overlapping "
-        << decided["inner_balls_overlap"].get<long>() << ", portal test "
-        << decided["portal"].get<long>() << ", GJK " << decided["gjk"].get<long>() << "\n";
+        << decided["inner_balls_overlap"].get<long>() << ", fan test " << decided["fan"].get<long>()
+        << ", portal test " << decided["portal"].get<long>() << ", GJK "
+        << decided["gjk"].get<long>() << "\n";
   }
   out << "Figure 4.9, " << figures["motion_checks"].get<int>() << " checks along random motions:\n";
   header("");
