@@ -288,10 +288,6 @@ DistanceResult distancePlacedScalar(const ConvexPolytope& a, const TransformedSu
 PairVerdict fanPretest(const ConvexPolytope& a, const TransformedSupport& bInA, double margin,
                        const GjkTolerance& tolerance);
 
-}  // namespace detail
-
-namespace detail {
-
 // sphereVerdict() with each polytope's sphere centres placed into a common frame by `placeA`
 // and `placeB` (callables Vec3 -> Vec3); the inner balls are only placed when needed.
 template <class PlaceA, class PlaceB>
@@ -364,10 +360,6 @@ inline DistanceResult distance(const ConvexPolytope& a, const TransformedSupport
   return distance<ConvexPolytope, TransformedSupport>(a, b, cache, tolerance);
 }
 
-// GJK between two placed polytopes runs in a's local frame: b is placed by the relative pose
-// a⁻¹ b, so a's support is a plain scan and only b's direction and point are transformed. These
-// overloads are chosen over the generic templates of gjk.hpp; a cache used with them keeps its
-// direction in a's frame (use one cache with one overload family per pair).
 namespace detail {
 
 // Written out entry by entry: neither Eigen's small products nor a loop over the nine entries
@@ -410,6 +402,11 @@ auto withLocalCache(PlacedPairCache* cache, Query&& query) {
 
 }  // namespace detail
 
+// GJK between two placed polytopes runs in a's local frame: b is placed by the relative pose
+// a⁻¹ b, so a's support is a plain scan and only b's direction and point are transformed. These
+// overloads are chosen over the generic templates of gjk.hpp; a cache used with them keeps its
+// direction in a's frame (use one cache with one overload family per pair).
+//
 // The sphere pre-tests run on the world-frame centres first: the relative pose is only formed
 // for the pairs they leave undecided.
 inline bool intersects(const TransformedSupport& a, const TransformedSupport& b,

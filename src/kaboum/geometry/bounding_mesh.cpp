@@ -825,6 +825,8 @@ void BoundingMeshSimplifier::acquireHub(std::uint32_t v) {
   hub.maxEdge = 0.0;
   hub.unindexed = 0;
   hub.raised.clear();  // v's edges are all queued afresh by their lower bounds
+  // Room for every edge at v now, so that the first contractions next to it do not allocate.
+  hub.raised.reserve(triangleCount_[v]);
 }
 
 // Edge e is now keyed above its lower bound: lists it at its hub ends.
