@@ -21,6 +21,7 @@
 #include "kaboum/io/mesh_io.hpp"
 #include "kaboum/kinematics/random_configuration.hpp"
 #include "kaboum/kinematics/urdf_loader.hpp"
+#include "pair_decisions.hpp"
 
 namespace kaboum::cli {
 namespace {
@@ -152,13 +153,11 @@ std::vector<double> medianTimes(std::size_t count, int runs, std::vector<char>& 
 }
 
 // How kaboum's narrow phase decides the robot-piece / obstacle-piece pairs whose world boxes
-// overlap, over all `poses` (every such pair, without the early exit of a real check): bounding
-// spheres apart, inner balls overlapping, the fan test (AVX-512 build, up to 16 vertices), the
-// portal test, else GJK.
+// overlap, over all `poses` (every such pair, without the early exit of a real check).
 nlohmann::json narrowPhaseDecisions(const RobotCollisionModel& robot, const CollisionScene& scene,
                                     const std::vector<std::vector<Pose>>& poses) {
-  using collision::PairVerdict;
-  long boxesOverlap = 0, spheresApart = 0, innerBallsOverlap = 0, fan = 0, portal = 0, gjk = 0;
+  long boxesOverlap = 0;
+  PairDecisionCounts counts;
   std::vector<std::vector<collision::Aabb>> obstacleBoxes(scene.size());
   for (std::size_t o = 0; o < scene.size(); ++o) {
     for (std::size_t q = 0; q < scene.body(o).pieceCount(); ++q) {
@@ -178,31 +177,15 @@ nlohmann::json narrowPhaseDecisions(const RobotCollisionModel& robot, const Coll
             ++boxesOverlap;
             const collision::TransformedSupport obstacle(
                 scene.body(o).piece(q), collision::inFrameOf(partPose, scene.pose(o)));
-            const PairVerdict spheres = collision::sphereVerdict(body.piece(p), obstacle);
-            if (spheres == PairVerdict::separated) {
-              ++spheresApart;
-            } else if (spheres == PairVerdict::intersecting) {
-              ++innerBallsOverlap;
-            } else if (collision::detail::fanPretest(body.piece(p), obstacle, 0.0, {}) !=
-                       PairVerdict::unknown) {
-              ++fan;
-            } else if (collision::portalIntersects(body.piece(p), obstacle) !=
-                       PairVerdict::unknown) {
-              ++portal;
-            } else {
-              ++gjk;
-            }
+            counts.add(body.piece(p), obstacle);
           }
         }
       }
     }
   }
-  return {{"boxes_overlap", boxesOverlap},
-          {"bounding_spheres_apart", spheresApart},
-          {"inner_balls_overlap", innerBallsOverlap},
-          {"fan", fan},
-          {"portal", portal},
-          {"gjk", gjk}};
+  nlohmann::json decided = counts.toJson();
+  decided["boxes_overlap"] = boxesOverlap;
+  return decided;
 }
 
 // One way of modelling the robot: kaboum on its convex pieces vs FCL on the same pieces.

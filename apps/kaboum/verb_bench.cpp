@@ -26,6 +26,7 @@
 #include "kaboum/collision/minkowski_reference.hpp"
 #include "kaboum/collision/polytope_pairs.hpp"
 #include "kaboum/core/error.hpp"
+#include "pair_decisions.hpp"
 #include "verb.hpp"
 
 namespace kaboum::cli {
@@ -274,33 +275,14 @@ std::vector<MethodReport> measureAll(const std::vector<PolytopePair>& pairs,
   return reports;
 }
 
-// How kaboum's cold boolean query decides the pairs (in this order): bounding spheres apart,
-// inner balls overlapping (sphereVerdict), the fan test (AVX-512 build, up to 16 vertices), the
-// portal test (portalIntersects), else GJK.
+// How kaboum's cold boolean query decides the pairs.
 nlohmann::json kaboumDecisions(const std::vector<PolytopePair>& pairs) {
-  using collision::PairVerdict;
-  int spheresApart = 0, innerBallsOverlap = 0, fan = 0, portal = 0, gjk = 0;
+  PairDecisionCounts counts;
   for (const PolytopePair& pair : pairs) {
     const collision::ConvexPolytope a(pair.localA), b(pair.localB);
-    const collision::TransformedSupport bInA(b, pair.poseA.inverse() * pair.poseB);
-    const PairVerdict spheres = collision::sphereVerdict(a, bInA);
-    if (spheres == PairVerdict::separated) {
-      ++spheresApart;
-    } else if (spheres == PairVerdict::intersecting) {
-      ++innerBallsOverlap;
-    } else if (collision::detail::fanPretest(a, bInA, 0.0, {}) != PairVerdict::unknown) {
-      ++fan;
-    } else if (collision::portalIntersects(a, bInA) != PairVerdict::unknown) {
-      ++portal;
-    } else {
-      ++gjk;
-    }
+    counts.add(a, collision::TransformedSupport(b, pair.poseA.inverse() * pair.poseB));
   }
-  return {{"bounding_spheres_apart", spheresApart},
-          {"inner_balls_overlap", innerBallsOverlap},
-          {"fan", fan},
-          {"portal", portal},
-          {"gjk", gjk}};
+  return counts.toJson();
 }
 
 // Section "pairs": random convex polytope pairs per vertex count, every library side by side.
