@@ -1,16 +1,17 @@
 // Bounding convex decomposition time and Table 4.3's figures (pieces, vertices per piece,
 // distances) for every KR5 link (dart-doc) and every Comau Smart SiX link of the Bimanual Assembly
-// scenario
-// (../shared, skipped when absent), per link and per whole robot on two threads.
+// scenario (../shared, skipped when absent), per link and per whole robot on two threads.
 // Run: build/release/bench/bench_decomposition --benchmark_repetitions=3
 //          --benchmark_report_aggregates_only=true
-// With --seeds=N every link is also decomposed with DecompositionOptions::seed 2..N (the random
-// concavity samples), and counters give the approximation->original distance over the N seeds:
-// single links move by up to ~1% of the diagonal with the seed, so compare changes on that spread.
+// With --seeds=N (a whole number of at least 1; anything else exits with code 2) every link is
+// also decomposed with DecompositionOptions::seed 2..N (the random concavity samples), and counters
+// give the approximation->original distance over the N seeds: single links move by up to ~1% of
+// the diagonal with the seed, so compare changes on that spread.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
-#include <cstdlib>
+#include <charconv>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -145,7 +146,16 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string_view argument = argv[i];
     if (argument.starts_with("--seeds=")) {
-      seedCount = static_cast<unsigned>(std::max(1L, std::atol(argv[i] + 8)));
+      const std::string_view value = argument.substr(8);
+      const char* end = value.data() + value.size();
+      const auto [stop, error] = std::from_chars(value.data(), end, seedCount);
+      if (error != std::errc{} || stop != end || seedCount == 0) {
+        std::fprintf(stderr,
+                     "bench_decomposition: --seeds: expected a whole number of at least 1, got "
+                     "'%.*s'\n",
+                     static_cast<int>(value.size()), value.data());
+        return 2;
+      }
     } else {
       argv[kept++] = argv[i];
     }

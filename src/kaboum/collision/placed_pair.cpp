@@ -8,9 +8,9 @@
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 // Each per-instruction-set query below is compiled whole (flatten: the portal test, the fan test,
-// GJK and the scans inlined into one function). Not in sanitizer builds (GCC defines
-// __SANITIZE_ADDRESS__): instrumented, the flattened queries took minutes to compile, and there
-// only the answers matter.
+// GJK and the scans inlined into one function). Not in AddressSanitizer builds (GCC defines
+// __SANITIZE_ADDRESS__; the asan preset also runs UBSan): instrumented, the flattened queries
+// took minutes to compile, and there only the answers matter.
 #ifdef __SANITIZE_ADDRESS__
 #define KABOUM_WHOLE_QUERY
 #else
