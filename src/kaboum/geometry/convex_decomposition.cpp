@@ -25,6 +25,7 @@
 #include "kaboum/geometry/hole_filling.hpp"
 #include "kaboum/geometry/mesh_analysis.hpp"
 #include "kaboum/geometry/mesh_cleanup.hpp"
+#include "kaboum/geometry/quick_hull.hpp"
 #include "kaboum/geometry/surface_sampling.hpp"
 #include "kaboum/geometry/triangle_bvh.hpp"
 
@@ -73,7 +74,7 @@ class Solid {
 
   // Inside, or on the surface up to the tolerance (a corner there is kept, which is harmless).
   [[nodiscard]] bool contains(const Vec3& p) const {
-    return bvh_.closest(p).distance <= tolerance_ || bvh_.contains(p);
+    return bvh_.hasTriangleWithin(p, tolerance_) || bvh_.contains(p);
   }
   [[nodiscard]] Vec3 closestPoint(const Vec3& p) const { return bvh_.closest(p).point; }
 
@@ -91,15 +92,14 @@ class Solid {
     }
     if (!samples.empty()) result.where = samples.front();
     for (const Vec3& p : samples) {
-      if (bvh_.hasTriangleWithin(p, result.distance)) continue;
-      const double d = bvh_.closest(p).distance;
-      if (d > result.distance && !bvh_.contains(p)) {
-        result.distance = d;
-        result.where = p;
-        if (result.distance >= stopAt) {
-          result.complete = false;
-          return result;
-        }
+      // Beyond the largest distance so far: it counts unless it is inside (many samples on cut
+      // faces are, and then need no closest point).
+      if (bvh_.hasTriangleWithin(p, result.distance) || bvh_.contains(p)) continue;
+      result.distance = bvh_.closest(p).distance;
+      result.where = p;
+      if (result.distance >= stopAt) {
+        result.complete = false;
+        return result;
       }
     }
     return result;
@@ -118,7 +118,7 @@ struct Cell {
   std::vector<std::uint32_t> polygonEnds;  // end offset of every polygon in polygonPoints
   std::vector<HullPlane> walls;            // n.x <= d inside
   std::vector<Vec3> corners;               // cell corners inside the solid
-  ConvexHull hull;
+  ConvexHull hull;  // a candidate's has no planes (buildCandidateHull), a kept cell's has
   double hullVolume = 0.0;
   double concavity = 0.0;  // largest sampled distance from the hull to the solid
   Vec3 worstPoint = Vec3::Zero();
@@ -257,6 +257,37 @@ bool buildHull(Cell& cell, double snap) {
   return false;
 }
 
+// The hull of a candidate child of a cut, to rank the cuts by volume: quickHull (a point within
+// `snap` of the hull counts as inside), or buildHull where quickHull gives none. Its `planes` stay
+// empty until keepHull.
+bool buildCandidateHull(Cell& cell, double snap) {
+  std::vector<Vec3> points = cell.points;
+  points.insert(points.end(), cell.corners.begin(), cell.corners.end());
+  std::optional<TriangleMesh> mesh = quickHull(points, snap);
+  if (!mesh) return buildHull(cell, snap);
+  cell.hull = ConvexHull{std::move(*mesh), {}, {}};
+  cell.hullVolume = meshVolume(cell.hull.mesh);
+  return cell.hullVolume > 0.0;
+}
+
+// Gives a candidate whose concavity is measured (and so every cell that is kept) the hull of
+// buildHull, which contains every point; where qhull fails on them, the candidate hull with the
+// planes of its triangles.
+void keepHull(Cell& cell, double snap) {
+  if (!cell.hull.planes.empty()) return;  // built by buildHull already
+  ConvexHull candidate = cell.hull;
+  if (buildHull(cell, snap)) return;
+  cell.hull = std::move(candidate);
+  const TriangleMesh& mesh = cell.hull.mesh;
+  for (const Triangle& t : mesh.triangles) {
+    const Vec3 normal = (mesh.vertices[t[1]] - mesh.vertices[t[0]])
+                            .cross(mesh.vertices[t[2]] - mesh.vertices[t[0]])
+                            .normalized();
+    cell.hull.planes.push_back({normal, normal.dot(mesh.vertices[t[0]])});
+  }
+  cell.hullVolume = meshVolume(mesh);
+}
+
 // Lets the workers of decomposeBoundingEach that have no mesh left help the others: a worker
 // hands out independent tasks (the candidate cuts of a split) and idle workers take some. Who
 // runs which task does not change any result.
@@ -392,7 +423,8 @@ bool measureMergedConcavity(Cell& merged, const Cell& a, const Cell& b, const Co
   return farthest.complete;
 }
 
-// The part of `parent` on the side n.x <= d of `cut`, or nothing when it has no volume.
+// The part of `parent` on the side n.x <= d of `cut` with its candidate hull, or nothing when it
+// has no volume.
 std::optional<Cell> childCell(const Cell& parent, const HullPlane& cut, const Context& context) {
   Cell child;
   clipPoints(parent, cut, context.tolerance, child);
@@ -400,7 +432,7 @@ std::optional<Cell> childCell(const Cell& parent, const HullPlane& cut, const Co
   child.walls = parent.walls;
   child.walls.push_back(cut);
   child.corners = childCorners(parent.corners, child.walls, context.solid, context.tolerance);
-  if (!buildHull(child, context.snap)) return std::nullopt;
+  if (!buildCandidateHull(child, context.snap)) return std::nullopt;
   return child;
 }
 
@@ -446,7 +478,8 @@ std::vector<Vec3> pocketNormals(const Cell& cell, const Solid& solid) {
 // concavity grows with, and it is cheap to compare) and the cuts through the worst concavity
 // sample; nothing when no candidate cuts it in two. The children come with their concavity
 // measured and their polygons clipped. Candidates: axis-parallel and principal-axis planes at
-// evenly spaced positions and through the worst sample, and the pocket planes through it.
+// evenly spaced positions and through the worst sample, and the pocket planes through it. Their
+// volumes come from quickHull; only the measured candidates get qhull's hulls (buildHull).
 std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& context,
                                                std::uint64_t& measured) {
   struct Candidate {
@@ -513,6 +546,11 @@ std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& 
     toMeasure.push_back({i, measured});
     measured += 2;
   }
+  // They are sampled on the hulls of buildHull (whose facets are triangulated as fans).
+  runTasks(context.sharing, toMeasure.size(), [&](std::size_t k) {
+    keepHull(candidates[toMeasure[k].index].below, context.snap);
+    keepHull(candidates[toMeasure[k].index].above, context.snap);
+  });
   std::stable_sort(toMeasure.begin(), toMeasure.end(), [&](const auto& a, const auto& b) {
     return volume(candidates[a.index]) < volume(candidates[b.index]);
   });

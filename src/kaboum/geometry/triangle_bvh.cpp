@@ -521,10 +521,18 @@ bool TriangleBvh::hasTriangleWithin(const Vec3& query, double radius) const {
   // Node boxes are padded by padding_, so the box around the ball cannot miss by rounding.
   const Vec3 reach = Vec3::Constant(radius);
   bool found = false;
+  const Vec3 lo = query - reach - Vec3::Constant(padding_);
+  const Vec3 hi = query + reach + Vec3::Constant(padding_);
   forEachSlotOverlapping(query - reach, query + reach, [&](std::uint32_t slot) {
     const Triangle& tri = triangles_[slot];
-    const Vec3 point =
-        closestPointOnTriangle(query, vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]);
+    const Vec3 &a = vertices_[tri[0]], &b = vertices_[tri[1]], &c = vertices_[tri[2]];
+    // A triangle whose box misses the padded box around the ball is farther than `radius` by
+    // more than any rounding of the closest point: skipping it changes no answer.
+    if ((a.array().max(b.array()).max(c.array()) < lo.array()).any() ||
+        (a.array().min(b.array()).min(c.array()) > hi.array()).any()) {
+      return true;
+    }
+    const Vec3 point = closestPointOnTriangle(query, a, b, c);
     found = std::sqrt((point - query).squaredNorm()) <= radius;
     return !found;
   });
