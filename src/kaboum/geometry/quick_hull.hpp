@@ -16,7 +16,7 @@ namespace kaboum {
 // counts as inside, and every hull vertex is checked to be at most 1000 tolerances above the
 // plane of every triangle. Nothing when the points span no volume beyond the tolerance, or when
 // nearly coplanar points defeat the tolerance (the surface would not be one closed convex sheet);
-// the caller then falls back to convexHull.
+// the caller then falls back to convexHull. The points must be finite (convexHull checks them).
 std::optional<TriangleMesh> quickHull(std::span<const Vec3> points, double tolerance);
 
 }  // namespace kaboum
