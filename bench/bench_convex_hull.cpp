@@ -15,6 +15,7 @@
 #include "kaboum/geometry/convex_hull.hpp"
 #include "kaboum/geometry/mesh_analysis.hpp"
 #include "kaboum/geometry/quick_hull.hpp"
+#include "kaboum/geometry/test_shapes.hpp"
 #include "kaboum/io/mesh_io.hpp"
 
 namespace {
@@ -27,24 +28,9 @@ struct PointSet {
   double tolerance;  // of quickHull: 1e-8 of the diagonal, as in the decomposition
 };
 
-// The mesh's vertices on the side z <= middle of its box, and its edges' crossings of that plane.
-std::vector<Vec3> belowMiddle(const kaboum::TriangleMesh& mesh) {
-  const kaboum::MeshAnalysis analysis = kaboum::analyzeMesh(mesh);
-  const double cut = 0.5 * (analysis.boxMin.z() + analysis.boxMax.z());
-  std::vector<Vec3> points;
-  for (const Vec3& v : mesh.vertices) {
-    if (v.z() <= cut) points.push_back(v);
-  }
-  for (const kaboum::Triangle& t : mesh.triangles) {
-    for (int k = 0; k < 3; ++k) {
-      const Vec3& p = mesh.vertices[t[k]];
-      const Vec3& q = mesh.vertices[t[(k + 1) % 3]];
-      if ((p.z() - cut) * (q.z() - cut) < 0.0) {
-        points.push_back(p + (q - p) * ((cut - p.z()) / (q.z() - p.z())));
-      }
-    }
-  }
-  return points;
+PointSet pointSet(std::string name, std::vector<Vec3> points) {
+  const double diagonal = kaboum::boundingBoxDiagonal(kaboum::TriangleMesh{points, {}});
+  return {std::move(name), std::move(points), 1e-8 * diagonal};
 }
 
 const std::vector<PointSet>& pointSets() {
@@ -55,10 +41,12 @@ const std::vector<PointSet>& pointSets() {
          {"base_link", "shoulder", "bicep", "elbow", "forearm", "wrist", "palm"}) {
       const std::filesystem::path path = kr5 / (std::string(name) + ".STL");
       if (!std::filesystem::exists(path)) continue;
-      kaboum::TriangleMesh mesh = kaboum::readMesh(path.string());
-      const double tolerance = 1e-8 * kaboum::boundingBoxDiagonal(mesh);
-      result.push_back({std::string("KR5_") + name, mesh.vertices, tolerance});
-      result.push_back({std::string("KR5_") + name + "_below_cut", belowMiddle(mesh), tolerance});
+      const kaboum::TriangleMesh mesh = kaboum::readMesh(path.string());
+      const kaboum::MeshAnalysis analysis = kaboum::analyzeMesh(mesh);
+      result.push_back(pointSet(std::string("KR5_") + name, mesh.vertices));
+      result.push_back(pointSet(
+          std::string("KR5_") + name + "_below_cut",
+          kaboum::pointsBelowCut(mesh, 0.5 * (analysis.boxMin.z() + analysis.boxMax.z()))));
     }
     std::mt19937 rng(1);
     std::normal_distribution<double> gauss;
@@ -66,7 +54,7 @@ const std::vector<PointSet>& pointSets() {
       std::vector<Vec3> sphere;
       for (int i = 0; i < n; ++i)
         sphere.push_back(Vec3(gauss(rng), gauss(rng), gauss(rng)).normalized());
-      result.push_back({"sphere_" + std::to_string(n), sphere, 2e-8});
+      result.push_back(pointSet("sphere_" + std::to_string(n), sphere));
     }
     return result;
   }();

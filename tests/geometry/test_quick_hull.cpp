@@ -81,19 +81,7 @@ TEST(QuickHull, MatchesQhullOnRandomAndRealPointSets) {
   const MeshAnalysis analysis = analyzeMesh(wrist);
   for (const double fraction : {0.3, 0.5, 0.7}) {
     const double cut = analysis.boxMin.z() + fraction * (analysis.boxMax.z() - analysis.boxMin.z());
-    std::vector<Vec3> below;
-    for (const Vec3& v : wrist.vertices) {
-      if (v.z() <= cut) below.push_back(v);
-    }
-    for (const Triangle& t : wrist.triangles) {
-      for (int k = 0; k < 3; ++k) {
-        const Vec3& p = wrist.vertices[t[k]];
-        const Vec3& q = wrist.vertices[t[(k + 1) % 3]];
-        if ((p.z() - cut) * (q.z() - cut) < 0.0) {
-          below.push_back(p + (q - p) * ((cut - p.z()) / (q.z() - p.z())));
-        }
-      }
-    }
+    const std::vector<Vec3> below = pointsBelowCut(wrist, cut);
     expectHullOf(below, "KR5 wrist below a cut at " + std::to_string(fraction));
   }
 }

@@ -237,9 +237,15 @@ std::vector<Vec3> thinOut(const std::vector<Vec3>& points, double snap) {
 // The hull of the cell's polygons and inside corners; false when it has no volume. qhull rejects
 // some inputs with points a rounding error apart (clip points next to vertices); those are
 // retried without points closer than `snap` to another, which moves the hull by at most `snap`.
-bool buildHull(Cell& cell, double snap) {
+// The points a cell's piece is the hull of: its polygon corners and its inside corners.
+std::vector<Vec3> hullPoints(const Cell& cell) {
   std::vector<Vec3> points = cell.points;
   points.insert(points.end(), cell.corners.begin(), cell.corners.end());
+  return points;
+}
+
+bool buildHull(Cell& cell, double snap) {
+  std::vector<Vec3> points = hullPoints(cell);
   for (int attempt = 0; attempt < 2; ++attempt) {
     if (attempt == 1) {
       sortPoints(points);
@@ -261,9 +267,7 @@ bool buildHull(Cell& cell, double snap) {
 // `snap` of the hull counts as inside), or buildHull where quickHull gives none. Its `planes` stay
 // empty until keepHull.
 bool buildCandidateHull(Cell& cell, double snap) {
-  std::vector<Vec3> points = cell.points;
-  points.insert(points.end(), cell.corners.begin(), cell.corners.end());
-  std::optional<TriangleMesh> mesh = quickHull(points, snap);
+  std::optional<TriangleMesh> mesh = quickHull(hullPoints(cell), snap);
   if (!mesh) return buildHull(cell, snap);
   cell.hull = ConvexHull{std::move(*mesh), {}, {}};
   cell.hullVolume = meshVolume(cell.hull.mesh);

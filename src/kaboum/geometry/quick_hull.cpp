@@ -27,6 +27,8 @@ struct Face {
   std::uint32_t farthest = kNone;  // the point of the outside set farthest above the plane
   double farthestDistance = 0.0;
   bool alive = true;
+  std::uint64_t seen = 0;  // the addPoint that last tested it against its eye
+  bool visible = false;    // what that test found
 };
 
 class QuickHull {
@@ -37,6 +39,7 @@ class QuickHull {
   std::optional<TriangleMesh> run() {
     if (points_.size() < 4) return std::nullopt;
     nextOutside_.assign(points_.size(), kNone);
+    cornerStamps_.assign(points_.size(), 0);
     faces_.reserve(8 * points_.size());
     if (!startTetrahedron()) return std::nullopt;
     // Faces are appended as points are added; a face gets outside points only when it is made,
@@ -162,7 +165,7 @@ class QuickHull {
     const std::uint32_t eye = faces_[f].farthest;
     ++stamp_;
     visible_.assign(1, f);
-    mark(f) = {stamp_, true};
+    see(f, true);
     horizon_.clear();
     // Depth first over the visible faces, each face's edges in order starting after the edge it
     // was entered by: the horizon edges come out as one counter-clockwise loop.
@@ -178,13 +181,12 @@ class QuickHull {
       top.edge = (k + 1) % 3;
       --top.left;
       const std::uint32_t next = faces_[face].across[k];
-      const auto [seen, isVisible] = mark(next);
-      if (seen == stamp_) {
-        if (!isVisible) horizon_.push_back({face, k});
+      if (faces_[next].seen == stamp_) {
+        if (!faces_[next].visible) horizon_.push_back({face, k});
         continue;
       }
       if (height(faces_[next], eye) > tolerance_) {
-        mark(next) = {stamp_, true};
+        see(next, true);
         visible_.push_back(next);
         int back = -1;
         for (int j = 0; j < 3; ++j) {
@@ -193,7 +195,7 @@ class QuickHull {
         if (back < 0) return false;
         stack_.push_back({next, (back + 1) % 3, 2});
       } else {
-        mark(next) = {stamp_, false};
+        see(next, false);
         horizon_.push_back({face, k});
       }
     }
@@ -206,8 +208,8 @@ class QuickHull {
       const auto [nextFace, nextK] = horizon_[(i + 1) % m];
       const std::uint32_t start = faces_[face].corners[k];
       if (faces_[face].corners[(k + 1) % 3] != faces_[nextFace].corners[nextK]) return false;
-      if (cornerStamp(start) == stamp_) return false;
-      cornerStamp(start) = stamp_;
+      if (cornerStamps_[start] == stamp_) return false;
+      cornerStamps_[start] = stamp_;
     }
     // The cone from the eye over the horizon.
     const auto first = static_cast<std::uint32_t>(faces_.size());
@@ -257,17 +259,9 @@ class QuickHull {
     return true;
   }
 
-  struct Mark {
-    std::uint64_t stamp = 0;
-    bool visible = false;
-  };
-  Mark& mark(std::uint32_t face) {
-    if (marks_.size() < faces_.size()) marks_.resize(2 * faces_.size());
-    return marks_[face];
-  }
-  std::uint64_t& cornerStamp(std::uint32_t point) {
-    if (cornerStamps_.empty()) cornerStamps_.resize(points_.size(), 0);
-    return cornerStamps_[point];
+  void see(std::uint32_t face, bool visible) {
+    faces_[face].seen = stamp_;
+    faces_[face].visible = visible;
   }
 
   // The live faces as a mesh over the points they use.
@@ -293,9 +287,8 @@ class QuickHull {
   std::span<const Vec3> points_;
   double tolerance_;
   std::vector<Face> faces_;
-  std::vector<std::uint32_t> nextOutside_;  // the next point of the same outside set
-  std::vector<Mark> marks_;
-  std::vector<std::uint64_t> cornerStamps_;
+  std::vector<std::uint32_t> nextOutside_;   // the next point of the same outside set
+  std::vector<std::uint64_t> cornerStamps_;  // the addPoint whose horizon last passed the point
   std::uint64_t stamp_ = 0;
   std::vector<std::uint32_t> visible_, cone_;
   std::vector<std::pair<std::uint32_t, int>> horizon_;  // (visible face, edge) in loop order

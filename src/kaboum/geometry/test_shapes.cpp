@@ -210,6 +210,23 @@ TriangleMesh transformMesh(const TriangleMesh& mesh, double scale, const Vec3& c
   return result;
 }
 
+std::vector<Vec3> pointsBelowCut(const TriangleMesh& mesh, double height) {
+  std::vector<Vec3> points;
+  for (const Vec3& v : mesh.vertices) {
+    if (v.z() <= height) points.push_back(v);
+  }
+  for (const Triangle& tri : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& p = mesh.vertices[tri[k]];
+      const Vec3& q = mesh.vertices[tri[(k + 1) % 3]];
+      if ((p.z() - height) * (q.z() - height) < 0.0) {
+        points.push_back(p + (q - p) * ((height - p.z()) / (q.z() - p.z())));
+      }
+    }
+  }
+  return points;
+}
+
 TriangleMesh mergeMeshes(const TriangleMesh& first, const TriangleMesh& second) {
   TriangleMesh merged = first;
   const std::uint32_t shift = toIndex(first.vertices.size());

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "kaboum/geometry/triangle_mesh.hpp"
 
@@ -34,6 +35,10 @@ TriangleMesh makeDoubleCone(int rimVertices);
 // split into `rings` rows, each cap a fan around its centre (of valence `segments`): the triangle
 // fans of CAD exports.
 TriangleMesh makeFannedCylinder(int segments, int rings, double height = 1.0);
+
+// The points a decomposition cell below the plane z = `height` hulls: the mesh's vertices at or
+// below it and the crossings of its edges with it (coplanar up to rounding, as cut faces are).
+std::vector<Vec3> pointsBelowCut(const TriangleMesh& mesh, double height);
 
 // Every vertex mapped to center + scale * (v - center) + offset.
 TriangleMesh transformMesh(const TriangleMesh& mesh, double scale, const Vec3& center,
