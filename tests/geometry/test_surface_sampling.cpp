@@ -78,4 +78,46 @@ TEST(SampleSurface, ZeroAreaTrianglesGetNoRandomPoints) {
 }
 
 }  // namespace
+TEST(SurfaceSampler, MakesTheSamplesOfSampleSurfaceOneAtATime) {
+  const TriangleMesh torus = makeTorus(1.0, 0.3, 12, 8);
+  const std::vector<Vec3> all = sampleSurface(torus, 700, 9);
+  SurfaceSampler sampler(torus, 700, 9);
+  std::vector<Vec3> streamed;
+  for (Vec3 sample; sampler.next(sample);) {
+    streamed.push_back(sample);
+    EXPECT_EQ(sampler.produced(), streamed.size());
+  }
+  EXPECT_EQ(streamed, all);
+  Vec3 past = Vec3::Constant(7.0);
+  EXPECT_FALSE(sampler.next(past));  // stays exhausted
+  EXPECT_EQ(past, Vec3::Constant(7.0));
+  EXPECT_EQ(sampler.produced(), all.size());
+}
+
+TEST(SurfaceSampler, ResumesWhereItStopped) {
+  // A measurement that stops after a few samples of each stage and later goes on sees the same
+  // sequence as one that reads them all at once.
+  const TriangleMesh prism = makeLPrism();
+  const std::vector<Vec3> all = sampleSurface(prism, 50, 3);
+  SurfaceSampler sampler(prism, 50, 3);
+  std::vector<Vec3> streamed;
+  for (const std::size_t stop : {std::size_t{3}, all.size() - 60, all.size() - 20, all.size()}) {
+    for (Vec3 sample; streamed.size() < stop && sampler.next(sample);) streamed.push_back(sample);
+  }
+  EXPECT_EQ(streamed, all);
+
+  TriangleMesh flat;  // no area: vertices and edge midpoints only
+  flat.vertices = {Vec3(0, 0, 0), Vec3(1, 1, 1), Vec3(2, 2, 2)};
+  flat.triangles = {{0, 1, 2}};
+  SurfaceSampler flatSampler(flat, 100, 1);
+  std::size_t count = 0;
+  for (Vec3 sample; flatSampler.next(sample);) ++count;
+  EXPECT_EQ(count, 6u);
+  const TriangleMesh nothing;
+  SurfaceSampler empty(nothing, 10, 1);
+  Vec3 none;
+  EXPECT_FALSE(empty.next(none));
+  EXPECT_EQ(empty.produced(), 0u);
+}
+
 }  // namespace kaboum

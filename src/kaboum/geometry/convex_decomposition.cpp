@@ -14,6 +14,7 @@
 #include <iterator>
 #include <limits>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <numeric>
 #include <optional>
@@ -78,31 +79,27 @@ class Solid {
   }
   [[nodiscard]] Vec3 closestPoint(const Vec3& p) const { return bvh_.closest(p).point; }
 
-  // Largest distance to the solid over `samples` and `atLeast` (0 for samples inside), stopping as
-  // soon as it reaches `stopAt`. A sample only matters when it is farther than the largest distance
-  // so far, so most samples are settled by finding one triangle that close instead of the closest
-  // one; the result is bit for bit the one of a closest-point query per sample.
-  [[nodiscard]] Farthest largestDistance(const std::vector<Vec3>& samples, double stopAt,
-                                         double atLeast = 0.0) const {
-    Farthest result;
-    result.distance = atLeast;
-    if (atLeast >= stopAt) {
-      result.complete = false;
-      return result;
-    }
-    if (!samples.empty()) result.where = samples.front();
-    for (const Vec3& p : samples) {
+  // Continues `farthest` (started at a lower bound, 0 for none) over the samples `samples` has
+  // left, samples inside counting 0, until its distance reaches `stopAt` (then `complete` is
+  // false and the measurement can resume with a higher limit). A sample only matters when it is
+  // farther than the largest distance so far, so most samples are settled by finding one triangle
+  // that close instead of the closest one; the result is bit for bit the one of a closest-point
+  // query per sample.
+  void largestDistance(SurfaceSampler& samples, double stopAt, Farthest& farthest) const {
+    farthest.complete = farthest.distance < stopAt;
+    if (!farthest.complete) return;
+    for (Vec3 p; samples.next(p);) {
+      if (samples.produced() == 1) farthest.where = p;
       // Beyond the largest distance so far: it counts unless it is inside (many samples on cut
       // faces are, and then need no closest point).
-      if (bvh_.hasTriangleWithin(p, result.distance) || bvh_.contains(p)) continue;
-      result.distance = bvh_.closest(p).distance;
-      result.where = p;
-      if (result.distance >= stopAt) {
-        result.complete = false;
-        return result;
+      if (bvh_.hasTriangleWithin(p, farthest.distance) || bvh_.contains(p)) continue;
+      farthest.distance = bvh_.closest(p).distance;
+      farthest.where = p;
+      if (farthest.distance >= stopAt) {
+        farthest.complete = false;
+        return;
       }
     }
-    return result;
   }
 
  private:
@@ -234,9 +231,6 @@ std::vector<Vec3> thinOut(const std::vector<Vec3>& points, double snap) {
   return kept;
 }
 
-// The hull of the cell's polygons and inside corners; false when it has no volume. qhull rejects
-// some inputs with points a rounding error apart (clip points next to vertices); those are
-// retried without points closer than `snap` to another, which moves the hull by at most `snap`.
 // The points a cell's piece is the hull of: its polygon corners and its inside corners.
 std::vector<Vec3> hullPoints(const Cell& cell) {
   std::vector<Vec3> points = cell.points;
@@ -244,6 +238,9 @@ std::vector<Vec3> hullPoints(const Cell& cell) {
   return points;
 }
 
+// The hull of the cell's polygons and inside corners; false when it has no volume. qhull rejects
+// some inputs with points a rounding error apart (clip points next to vertices); those are
+// retried without points closer than `snap` to another, which moves the hull by at most `snap`.
 bool buildHull(Cell& cell, double snap) {
   std::vector<Vec3> points = hullPoints(cell);
   for (int attempt = 0; attempt < 2; ++attempt) {
@@ -382,9 +379,9 @@ struct Context {
 // stops once the concavity reaches `stopAt`; returns false then (the concavity is at least that).
 bool measureConcavity(Cell& cell, const Context& context, std::uint64_t salt,
                       double stopAt = std::numeric_limits<double>::infinity()) {
-  const std::vector<Vec3> samples =
-      sampleSurface(cell.hull.mesh, context.samples, context.seed * 1000003u + salt);
-  const Farthest farthest = context.solid.largestDistance(samples, stopAt);
+  SurfaceSampler samples(cell.hull.mesh, context.samples, context.seed * 1000003u + salt);
+  Farthest farthest;
+  context.solid.largestDistance(samples, stopAt, farthest);
   cell.concavity = farthest.distance;
   cell.worstPoint = farthest.where;
   return farthest.complete;
@@ -413,19 +410,34 @@ TriangleMesh bridgeTriangles(const Cell& merged, const Cell& a, const Cell& b) {
   return bridge;
 }
 
-// The concavity of the merged hull of pieces a and b: the larger of theirs and of the samples of
-// the bridge between them (every random sample goes where the merge adds concavity, so a narrow
-// gap between the parts is rarely missed). Stops like measureConcavity.
-bool measureMergedConcavity(Cell& merged, const Cell& a, const Cell& b, const Context& context,
-                            std::uint64_t salt, double stopAt) {
-  const std::vector<Vec3> samples = sampleSurface(
-      bridgeTriangles(merged, a, b), context.bridgeSamples, context.seed * 1000003u + salt);
-  const Farthest farthest =
-      context.solid.largestDistance(samples, stopAt, std::max(a.concavity, b.concavity));
-  merged.concavity = farthest.distance;
-  merged.worstPoint = farthest.where;
-  return farthest.complete;
-}
+// The measurement of the concavity of the merged hull of pieces a and b: the larger of theirs and
+// of the samples of the bridge between them (every random sample goes where the merge adds
+// concavity, so a narrow gap between the parts is rarely missed). It stops like measureConcavity
+// and resumes where it stopped when asked again with a higher limit.
+class MergedConcavity {
+ public:
+  MergedConcavity(const Cell& merged, const Cell& a, const Cell& b, const Context& context,
+                  std::uint64_t salt)
+      : bridge_(bridgeTriangles(merged, a, b)),
+        samples_(bridge_, context.bridgeSamples, context.seed * 1000003u + salt) {
+    farthest_.distance = std::max(a.concavity, b.concavity);
+  }
+  MergedConcavity(const MergedConcavity&) = delete;
+  MergedConcavity& operator=(const MergedConcavity&) = delete;
+
+  // Measures on until the concavity reaches `stopAt` and writes it to `merged`; true when complete.
+  bool measure(Cell& merged, const Solid& solid, double stopAt) {
+    solid.largestDistance(samples_, stopAt, farthest_);
+    merged.concavity = farthest_.distance;
+    merged.worstPoint = farthest_.where;
+    return farthest_.complete;
+  }
+
+ private:
+  TriangleMesh bridge_;
+  SurfaceSampler samples_;  // on bridge_
+  Farthest farthest_;
+};
 
 // The part of `parent` on the side n.x <= d of `cut` with its candidate hull, or nothing when it
 // has no volume.
@@ -620,7 +632,7 @@ class MergeSearch {
               std::uint64_t& measured)
       : context_(context), tolerance_(tolerance), measured_(measured) {
     for (std::uint32_t i = 0; i < leaves.size(); ++i) {
-      nodes_.push_back(Node{std::move(leaves[i]), {i}, kNone, kNone, 0, true, true, true});
+      nodes_.push_back(Node{std::move(leaves[i]), {i}, kNone, kNone, 0, true, true, true, nullptr});
       byLeaves_.emplace(std::vector<std::uint32_t>{i}, i);
       alive_.push_back(i);
     }
@@ -652,10 +664,11 @@ class MergeSearch {
     Cell cell;
     std::vector<std::uint32_t> leaves;
     std::uint32_t first, second;
-    std::uint64_t salt;  // of the bridge samples
-    bool built;          // the hull is built
-    bool usable;         // false when the hull has no volume
-    bool exact;          // cell.concavity is measured, else a lower bound
+    std::uint64_t salt;                            // of the bridge samples
+    bool built;                                    // the hull is built
+    bool usable;                                   // false when the hull has no volume
+    bool exact;                                    // cell.concavity is measured, else a lower bound
+    std::unique_ptr<MergedConcavity> measurement;  // while built and not exact
   };
   // A merge: the positions of its two pieces in a list of pieces and the merged piece.
   struct Choice {
@@ -684,7 +697,7 @@ class MergeSearch {
       return entry->second = known->second;
     }
     const auto id = static_cast<std::uint32_t>(nodes_.size());
-    Node node{Cell{}, leaves, a, b, measured_++, false, true, false};
+    Node node{Cell{}, leaves, a, b, measured_++, false, true, false, nullptr};
     node.cell.concavity = std::max(concavity(a), concavity(b));  // a lower bound
     nodes_.push_back(std::move(node));
     byLeaves_.emplace(std::move(leaves), id);
@@ -693,20 +706,23 @@ class MergeSearch {
 
   // Measures the merged piece until its concavity passes `limit`.
   void measure(Node& node, double limit) {
+    const Cell& first = nodes_[node.first].cell;
+    const Cell& second = nodes_[node.second].cell;
     if (!node.built) {
       node.built = true;
-      std::optional<Cell> merged =
-          mergedCell(nodes_[node.first].cell, nodes_[node.second].cell, context_.snap);
+      std::optional<Cell> merged = mergedCell(first, second, context_.snap);
       if (!merged) {
         node.usable = false;
         return;
       }
       merged->concavity = node.cell.concavity;
       node.cell = std::move(*merged);
+      node.measurement =
+          std::make_unique<MergedConcavity>(node.cell, first, second, context_, node.salt);
     }
-    node.exact = measureMergedConcavity(
-        node.cell, nodes_[node.first].cell, nodes_[node.second].cell, context_, node.salt,
-        std::nextafter(limit, std::numeric_limits<double>::infinity()));
+    node.exact = node.measurement->measure(
+        node.cell, context_.solid, std::nextafter(limit, std::numeric_limits<double>::infinity()));
+    if (node.exact) node.measurement.reset();
   }
 
   // The pair of `alive` whose merged piece has the smallest concavity (the first of equals in
@@ -1057,12 +1073,17 @@ Decomposition decomposeSharing(const TriangleMesh& mesh, const DecompositionOpti
                      : atLimit ? "piece limit reached"
                                : "cuts stopped reducing the concavity";
 
-  // Step 3: fewer vertices per piece, staying outside it and convex.
+  // Step 3: fewer vertices per piece, staying outside it and convex (pieces shared with idle
+  // workers).
+  std::vector<std::pair<ConvexHull, double>> simplified(leaves.size());
+  runTasks(sharing, leaves.size(), [&](std::size_t i) {
+    simplified[i] = simplifyPiece(leaves[i].hull, kSimplifyShare * stats.epsilon);
+  });
   double worstConcavity = 0.0, worstGrowth = 0.0;
-  for (const Cell& cell : leaves) {
-    stats.hullVertices += cell.hull.mesh.vertexCount();
-    worstConcavity = std::max(worstConcavity, cell.concavity);
-    auto [hull, growth] = simplifyPiece(cell.hull, kSimplifyShare * stats.epsilon);
+  for (std::size_t i = 0; i < leaves.size(); ++i) {
+    stats.hullVertices += leaves[i].hull.mesh.vertexCount();
+    worstConcavity = std::max(worstConcavity, leaves[i].concavity);
+    auto& [hull, growth] = simplified[i];
     worstGrowth = std::max(worstGrowth, growth);
     stats.totalVertices += hull.mesh.vertexCount();
     result.pieces.push_back({std::move(hull.mesh), std::move(hull.planes)});

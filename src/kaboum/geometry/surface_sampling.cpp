@@ -3,7 +3,6 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <random>
 
 namespace kaboum {
 
@@ -14,72 +13,95 @@ double unitInterval(std::mt19937_64& engine) {
   return static_cast<double>(engine() >> 11) * 0x1.0p-53;
 }
 
-void appendUsedVertices(const TriangleMesh& mesh, std::vector<Vec3>& samples) {
-  std::vector<char> used(mesh.vertices.size(), 0);
+}  // namespace
+
+SurfaceSampler::SurfaceSampler(const TriangleMesh& mesh, std::size_t randomCount,
+                               std::uint64_t seed)
+    : mesh_(&mesh), randomCount_(randomCount), seed_(seed), used_(mesh.vertices.size(), 0) {
   for (const Triangle& tri : mesh.triangles) {
-    for (const std::uint32_t index : tri) used[index] = 1;
-  }
-  for (std::size_t i = 0; i < used.size(); ++i) {
-    if (used[i]) samples.push_back(mesh.vertices[i]);
+    for (const std::uint32_t index : tri) used_[index] = 1;
   }
 }
 
-void appendEdgeMidpoints(const TriangleMesh& mesh, std::vector<Vec3>& samples) {
-  std::vector<std::uint64_t> edges;
-  edges.reserve(3 * mesh.triangles.size());
-  for (const Triangle& tri : mesh.triangles) {
+void SurfaceSampler::beginEdges() {
+  edges_.reserve(3 * mesh_->triangles.size());
+  for (const Triangle& tri : mesh_->triangles) {
     for (std::size_t k = 0; k < 3; ++k) {
       const std::uint32_t a = tri[k], b = tri[(k + 1) % 3];
-      if (a != b) edges.push_back((std::uint64_t{std::min(a, b)} << 32) | std::max(a, b));
+      if (a != b) edges_.push_back((std::uint64_t{std::min(a, b)} << 32) | std::max(a, b));
     }
   }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  for (const std::uint64_t edge : edges) {
-    const Vec3& a = mesh.vertices[edge >> 32];
-    const Vec3& b = mesh.vertices[edge & 0xffffffffu];
-    samples.push_back(0.5 * (a + b));
-  }
+  std::sort(edges_.begin(), edges_.end());
+  edges_.erase(std::unique(edges_.begin(), edges_.end()), edges_.end());
+  stage_ = Stage::edges;
+  position_ = 0;
 }
 
-void appendRandomPoints(const TriangleMesh& mesh, std::size_t count, std::uint64_t seed,
-                        std::vector<Vec3>& samples) {
-  std::vector<double> cumulativeArea(mesh.triangles.size());
+void SurfaceSampler::beginRandom() {
+  cumulativeArea_.resize(mesh_->triangles.size());
   double total = 0.0;
-  std::size_t lastWithArea = 0;
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    const Triangle& tri = mesh.triangles[t];
-    const Vec3& a = mesh.vertices[tri[0]];
-    const double area = 0.5 * (mesh.vertices[tri[1]] - a).cross(mesh.vertices[tri[2]] - a).norm();
-    if (area > 0.0) lastWithArea = t;
+  for (std::size_t t = 0; t < mesh_->triangles.size(); ++t) {
+    const Triangle& tri = mesh_->triangles[t];
+    const Vec3& a = mesh_->vertices[tri[0]];
+    const double area =
+        0.5 * (mesh_->vertices[tri[1]] - a).cross(mesh_->vertices[tri[2]] - a).norm();
+    if (area > 0.0) lastWithArea_ = t;
     total += area;
-    cumulativeArea[t] = total;
+    cumulativeArea_[t] = total;
   }
-  if (!(total > 0.0)) return;
-  std::mt19937_64 engine(seed);
-  for (std::size_t i = 0; i < count; ++i) {
-    // A zero-area triangle spans an empty interval of the cumulative areas: never selected.
-    const double target = unitInterval(engine) * total;
-    const auto t = std::min<std::size_t>(
-        std::upper_bound(cumulativeArea.begin(), cumulativeArea.end(), target) -
-            cumulativeArea.begin(),
-        lastWithArea);
-    const double root = std::sqrt(unitInterval(engine)), v = unitInterval(engine);
-    const Triangle& tri = mesh.triangles[t];
-    samples.push_back((1.0 - root) * mesh.vertices[tri[0]] +
-                      root * (1.0 - v) * mesh.vertices[tri[1]] + root * v * mesh.vertices[tri[2]]);
-  }
+  stage_ = total > 0.0 ? Stage::random : Stage::done;
+  position_ = 0;
+  engine_.emplace(seed_);
 }
 
-}  // namespace
+bool SurfaceSampler::next(Vec3& sample) {
+  const std::vector<Vec3>& vertices = mesh_->vertices;
+  if (stage_ == Stage::vertices) {
+    while (position_ < used_.size() && !used_[position_]) ++position_;
+    if (position_ < used_.size()) {
+      sample = vertices[position_++];
+      ++produced_;
+      return true;
+    }
+    beginEdges();
+  }
+  if (stage_ == Stage::edges) {
+    if (position_ < edges_.size()) {
+      const std::uint64_t edge = edges_[position_++];
+      sample = 0.5 * (vertices[edge >> 32] + vertices[edge & 0xffffffffu]);
+      ++produced_;
+      return true;
+    }
+    beginRandom();
+  }
+  if (stage_ == Stage::random) {
+    if (position_ == randomCount_) {
+      stage_ = Stage::done;
+      return false;
+    }
+    ++position_;
+    // A zero-area triangle spans an empty interval of the cumulative areas: never selected.
+    const double target = unitInterval(*engine_) * cumulativeArea_.back();
+    const auto t = std::min<std::size_t>(
+        std::upper_bound(cumulativeArea_.begin(), cumulativeArea_.end(), target) -
+            cumulativeArea_.begin(),
+        lastWithArea_);
+    const double root = std::sqrt(unitInterval(*engine_)), v = unitInterval(*engine_);
+    const Triangle& tri = mesh_->triangles[t];
+    sample = (1.0 - root) * vertices[tri[0]] + root * (1.0 - v) * vertices[tri[1]] +
+             root * v * vertices[tri[2]];
+    ++produced_;
+    return true;
+  }
+  return false;
+}
 
 std::vector<Vec3> sampleSurface(const TriangleMesh& mesh, std::size_t randomCount,
                                 std::uint64_t seed) {
   std::vector<Vec3> samples;
   samples.reserve(mesh.vertices.size() + 3 * mesh.triangles.size() / 2 + randomCount);
-  appendUsedVertices(mesh, samples);
-  appendEdgeMidpoints(mesh, samples);
-  appendRandomPoints(mesh, randomCount, seed, samples);
+  SurfaceSampler sampler(mesh, randomCount, seed);
+  for (Vec3 sample; sampler.next(sample);) samples.push_back(sample);
   return samples;
 }
 

@@ -576,9 +576,11 @@ std::optional<int> TriangleBvh::rayWinding(const Vec3& origin, const Vec3& direc
                    c = vertices_[tri[2]] - origin;
         const double a2 = a.squaredNorm(), b2 = b.squaredNorm(), c2 = c.squaredNorm();
         const Vec3 bc = b.cross(c);
-        // Which side of the planes through the ray origin and each edge the ray passes.
+        // Which side of the planes through the ray origin and each edge the ray passes (two
+        // opposite sides already mean a miss).
         const int sideAb = toleranceSignSquared(direction.dot(a.cross(b)), a2 * b2);
         const int sideBc = toleranceSignSquared(direction.dot(bc), b2 * c2);
+        if (sideAb * sideBc < 0) continue;
         const int sideCa = toleranceSignSquared(direction.dot(c.cross(a)), c2 * a2);
         if (mixedSigns(sideAb, sideBc, sideCa)) continue;  // the ray's line misses
         if (sideAb == 0 || sideBc == 0 || sideCa == 0) return std::nullopt;  // edge or vertex
