@@ -169,18 +169,22 @@ void clipPolygons(const Cell& from, const HullPlane& plane, double tolerance, Ce
 // building the polygons, which only the chosen split needs).
 void clipPoints(const Cell& from, const HullPlane& plane, double tolerance, Cell& to) {
   to.points.clear();
+  const auto side = [&](const Vec3& p) { return plane.normal.dot(p) - plane.offset; };
   for (const Vec3& p : from.points) {
-    if (plane.normal.dot(p) - plane.offset <= tolerance) to.points.push_back(p);
+    if (side(p) <= tolerance) to.points.push_back(p);
   }
   const auto kept = static_cast<std::ptrdiff_t>(to.points.size());
   std::uint32_t begin = 0;
   for (const std::uint32_t end : from.polygonEnds) {
+    const double first = side(from.polygonPoints[begin]);
+    double sp = first;  // of the edge's start, carried over from the previous edge's end
     for (std::uint32_t i = begin; i < end; ++i) {
+      const bool closing = i + 1 == end;
       const Vec3& p = from.polygonPoints[i];
-      const Vec3& q = from.polygonPoints[i + 1 < end ? i + 1 : begin];
-      const double sp = plane.normal.dot(p) - plane.offset;
-      const double sq = plane.normal.dot(q) - plane.offset;
+      const Vec3& q = from.polygonPoints[closing ? begin : i + 1];
+      const double sq = closing ? first : side(q);
       if (crosses(sp, sq, tolerance)) to.points.push_back(crossing(p, q, sp, sq));
+      sp = sq;
     }
     begin = end;
   }
