@@ -5,6 +5,7 @@
 #include <numbers>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "kaboum/core/error.hpp"
 #include "kaboum/geometry/mesh_comparison.hpp"
@@ -123,8 +124,8 @@ TEST(MeasureHausdorff, OfAShiftedMeshIsTheShift) {
   EXPECT_NEAR(report.resultToOriginal.max, 0.1, 1e-12);
 }
 
-// One meter, several results: each report is the shift's exact distance, and measureWithin
-// answers only when both one-sided maxima stay within the limit.
+// One meter, several results: each report is the shift's exact distance, and `within` says
+// whether both one-sided maxima stay within the limit.
 TEST(HausdorffMeter, MeasuresEachResultAgainstTheSameOriginal) {
   const TriangleMesh sphere = makeIcosphere(3);
   const HausdorffMeter meter(sphere, kRandomSamples, kSeed);
@@ -133,13 +134,30 @@ TEST(HausdorffMeter, MeasuresEachResultAgainstTheSameOriginal) {
     const HausdorffReport report = meter.measure(shifted);
     EXPECT_NEAR(report.originalToResult.max, shift, 1e-12);
     EXPECT_NEAR(report.resultToOriginal.max, shift, 1e-12);
-    EXPECT_FALSE(meter.measureWithin(shifted, 0.99 * shift).has_value());
-    const std::optional<HausdorffReport> within = meter.measureWithin(shifted, 1.01 * shift);
-    ASSERT_TRUE(within.has_value());
-    EXPECT_EQ(within->originalToResult.mean, report.originalToResult.mean);
-    EXPECT_EQ(within->resultToOriginal.mean, report.resultToOriginal.mean);
-    EXPECT_EQ(within->samples, report.samples);
+    EXPECT_FALSE(meter.within(shifted, 0.99 * shift));
+    EXPECT_TRUE(meter.within(shifted, 1.01 * shift));
   }
+  // Each direction on its own: a cap of the sphere is near it but leaves the rest far away; the
+  // sphere with a far box added is near the original but not the other way round.
+  TriangleMesh cap = sphere;
+  std::erase_if(cap.triangles, [&](const Triangle& t) { return sphere.vertices[t[0]].z() < 0.5; });
+  const HausdorffReport capReport = meter.measure(cap);
+  EXPECT_LT(capReport.resultToOriginal.max, 1e-12);
+  EXPECT_GT(capReport.originalToResult.max, 1.0);
+  EXPECT_FALSE(meter.within(cap, 0.5 * capReport.originalToResult.max));
+  EXPECT_TRUE(meter.within(cap, 1.0001 * capReport.originalToResult.max));
+  TriangleMesh withBox = sphere;
+  const TriangleMesh box = makeBox(Vec3::Constant(4.0), Vec3::Constant(5.0));
+  const auto offset = static_cast<std::uint32_t>(withBox.vertices.size());
+  withBox.vertices.insert(withBox.vertices.end(), box.vertices.begin(), box.vertices.end());
+  for (const Triangle& t : box.triangles) {
+    withBox.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  }
+  const HausdorffReport boxReport = meter.measure(withBox);
+  EXPECT_LT(boxReport.originalToResult.max, 1e-12);
+  EXPECT_GT(boxReport.resultToOriginal.max, 4.0);
+  EXPECT_FALSE(meter.within(withBox, 0.5 * boxReport.resultToOriginal.max));
+  EXPECT_TRUE(meter.within(withBox, 1.0001 * boxReport.resultToOriginal.max));
 }
 
 TEST(MeasureHausdorff, RejectsEmptyMeshesByRole) {

@@ -1175,11 +1175,9 @@ BoundingMeshResult simplifyBoundingWithin(const TriangleMesh& input, BoundingMes
   double scale = 1.0;
   while (runs < maxRuns) {
     BoundingMeshResult result = attempt(scale);
-    const std::optional<HausdorffReport> report = meter.measureWithin(result.mesh, epsilon);
-    if (report) {
+    if (meter.within(result.mesh, epsilon)) {
       fits = scale;
       best = std::move(result);
-      measured = *report;
       haveBest = true;
       if (best.stats.stopReason == "vertex target reached") break;  // cannot go further
     } else {
@@ -1194,10 +1192,8 @@ BoundingMeshResult simplifyBoundingWithin(const TriangleMesh& input, BoundingMes
       scale = std::sqrt(fits * fails);
     }
   }
-  if (!haveBest) {  // nothing fitted: no contraction at all
-    best = attempt(0.0);
-    measured = meter.measure(best.mesh);
-  }
+  if (!haveBest) best = attempt(0.0);  // nothing fitted: no contraction at all
+  measured = meter.measure(best.mesh);
   if (best.stats.stopReason != "vertex target reached") {
     best.stats.stopReason = "largest simplification found within the distance limit";
   }

@@ -66,18 +66,11 @@ std::size_t countUnbalancedEdges(const TriangleMesh& mesh) {
   return unbalanced;
 }
 
-// Distances of `samples` to `target`, or nullopt as soon as one exceeds `limit`.
-std::optional<DistanceStats> distanceStats(const std::vector<Vec3>& samples,
-                                           const TriangleBvh& target,
-                                           double limit = std::numeric_limits<double>::infinity()) {
+// Distances of `samples` to `target`.
+DistanceStats distanceStats(const std::vector<Vec3>& samples, const TriangleBvh& target) {
   std::vector<double> distances(samples.size());
-  std::atomic<bool> exceeded{false};
-  forEachIndex(samples.size(), [&](std::size_t i) {
-    if (exceeded.load(std::memory_order_relaxed)) return;
-    distances[i] = target.closest(samples[i]).distance;
-    if (distances[i] > limit) exceeded.store(true, std::memory_order_relaxed);
-  });
-  if (exceeded) return std::nullopt;
+  forEachIndex(samples.size(),
+               [&](std::size_t i) { distances[i] = target.closest(samples[i]).distance; });
   if (distances.empty()) return DistanceStats{};
   DistanceStats stats{std::numeric_limits<double>::infinity(), 0.0, 0.0};
   double sum = 0.0;
@@ -88,6 +81,19 @@ std::optional<DistanceStats> distanceStats(const std::vector<Vec3>& samples,
   }
   stats.mean = sum / static_cast<double>(distances.size());
   return stats;
+}
+
+// Whether every sample has a triangle of `target` within `limit`: the same answer as comparing
+// each closest distance with it (both take the distance to a triangle's closest point).
+bool allWithin(const std::vector<Vec3>& samples, const TriangleBvh& target, double limit) {
+  std::atomic<bool> exceeded{false};
+  forEachIndex(samples.size(), [&](std::size_t i) {
+    if (exceeded.load(std::memory_order_relaxed)) return;
+    if (!target.hasTriangleWithin(samples[i], limit)) {
+      exceeded.store(true, std::memory_order_relaxed);
+    }
+  });
+  return !exceeded;
 }
 
 std::size_t countSelfIntersections(const TriangleMesh& mesh, const TriangleBvh& bvh) {
@@ -134,25 +140,20 @@ HausdorffMeter::HausdorffMeter(const TriangleMesh& original, std::size_t randomS
 HausdorffMeter::~HausdorffMeter() = default;
 
 HausdorffReport HausdorffMeter::measure(const TriangleMesh& result) const {
-  return *measureWithin(result, std::numeric_limits<double>::infinity());
-}
-
-std::optional<HausdorffReport> HausdorffMeter::measureWithin(const TriangleMesh& result,
-                                                             double limit) const {
   const TriangleBvh resultBvh = buildBvh(result, "result");
-  const std::optional<DistanceStats> originalToResult =
-      distanceStats(original_->samples, resultBvh, limit);
-  if (!originalToResult) return std::nullopt;
   const std::vector<Vec3> resultSamples = sampleSurface(result, randomSamples_, seed_);
-  const std::optional<DistanceStats> resultToOriginal =
-      distanceStats(resultSamples, original_->bvh, limit);
-  if (!resultToOriginal) return std::nullopt;
   HausdorffReport report;
-  report.originalToResult = *originalToResult;
-  report.resultToOriginal = *resultToOriginal;
+  report.originalToResult = distanceStats(original_->samples, resultBvh);
+  report.resultToOriginal = distanceStats(resultSamples, original_->bvh);
   report.diagonal = original_->diagonal;
   report.samples = original_->samples.size() + resultSamples.size();
   return report;
+}
+
+bool HausdorffMeter::within(const TriangleMesh& result, double limit) const {
+  const TriangleBvh resultBvh = buildBvh(result, "result");
+  return allWithin(original_->samples, resultBvh, limit) &&
+         allWithin(sampleSurface(result, randomSamples_, seed_), original_->bvh, limit);
 }
 
 HausdorffReport measureHausdorff(const TriangleMesh& original, const TriangleMesh& result,
