@@ -518,25 +518,64 @@ TriangleBvh::Closest TriangleBvh::closest(const Vec3& query) const {
 }
 
 bool TriangleBvh::hasTriangleWithin(const Vec3& query, double radius) const {
-  // Node boxes are padded by padding_, so the box around the ball cannot miss by rounding.
+  // Node boxes are padded by padding_: a triangle within `radius` (up to the rounding of its
+  // closest point) lies in boxes that overlap the ball's box and are nearer than `radius` by about
+  // padding_, so no rounding of either test can drop it.
+  const double radiusSquared = radius * radius;
   const Vec3 reach = Vec3::Constant(radius);
-  bool found = false;
-  const Vec3 lo = query - reach - Vec3::Constant(padding_);
-  const Vec3 hi = query + reach + Vec3::Constant(padding_);
-  forEachSlotOverlapping(query - reach, query + reach, [&](std::uint32_t slot) {
-    const Triangle& tri = triangles_[slot];
-    const Vec3 &a = vertices_[tri[0]], &b = vertices_[tri[1]], &c = vertices_[tri[2]];
-    // A triangle whose box misses the padded box around the ball is farther than `radius` by
-    // more than any rounding of the closest point: skipping it changes no answer.
-    if ((a.array().max(b.array()).max(c.array()) < lo.array()).any() ||
-        (a.array().min(b.array()).min(c.array()) > hi.array()).any()) {
-      return true;
+  const Vec3 ballLo = query - reach, ballHi = query + reach;
+  const Vec3 lo = ballLo - Vec3::Constant(padding_);
+  const Vec3 hi = ballHi + Vec3::Constant(padding_);
+  const auto overlaps = [&](std::uint32_t node) {
+    return (nodes_[node].lo.array() <= ballHi.array()).all() &&
+           (ballLo.array() <= nodes_[node].hi.array()).all();
+  };
+  const auto nearness = [&](std::uint32_t node) {
+    return boxDistanceSquared(nodes_[node].lo, nodes_[node].hi, query);
+  };
+  // The leaves that can hold such a triangle, the nearer child first where both can: the answer
+  // is the same in any order, and a triangle that close is usually in the nearest leaf.
+  std::array<std::uint32_t, kMaxDepth> stack;
+  std::size_t size = 0;
+  std::uint32_t node = 0;
+  if (!overlaps(node)) return false;
+  while (true) {
+    const Node& n = nodes_[node];
+    if (n.count == 0) {
+      std::uint32_t nearChild = node + 1, farChild = n.first;
+      const bool nearIn = overlaps(nearChild), farIn = overlaps(farChild);
+      if (nearIn && farIn) {
+        double nearDistance2 = nearness(nearChild), farDistance2 = nearness(farChild);
+        if (farDistance2 < nearDistance2) {
+          std::swap(nearChild, farChild);
+          std::swap(nearDistance2, farDistance2);
+        }
+        if (nearDistance2 <= radiusSquared) {
+          if (farDistance2 <= radiusSquared) stack[size++] = farChild;
+          node = nearChild;
+          continue;
+        }
+      } else if (nearIn || farIn) {
+        node = nearIn ? nearChild : farChild;
+        continue;
+      }
+    } else {
+      for (std::uint32_t slot = n.first; slot < n.first + n.count; ++slot) {
+        const Triangle& tri = triangles_[slot];
+        const Vec3 &a = vertices_[tri[0]], &b = vertices_[tri[1]], &c = vertices_[tri[2]];
+        // A triangle whose box misses the padded box around the ball is farther than `radius` by
+        // more than any rounding of the closest point: skipping it changes no answer.
+        if ((a.array().max(b.array()).max(c.array()) < lo.array()).any() ||
+            (a.array().min(b.array()).min(c.array()) > hi.array()).any()) {
+          continue;
+        }
+        const Vec3 point = closestPointOnTriangle(query, a, b, c);
+        if (std::sqrt((point - query).squaredNorm()) <= radius) return true;
+      }
     }
-    const Vec3 point = closestPointOnTriangle(query, a, b, c);
-    found = std::sqrt((point - query).squaredNorm()) <= radius;
-    return !found;
-  });
-  return found;
+    if (size == 0) return false;
+    node = stack[--size];
+  }
 }
 
 std::span<const Vec3> TriangleBvh::insideTestDirections() {

@@ -55,7 +55,8 @@ class TriangleBvh {
   // Exact closest point on the surface (the first triangle found wins ties).
   [[nodiscard]] Closest closest(const Vec3& query) const;
   // Some triangle lies within `radius` of `query`: true exactly when closest(query).distance <=
-  // radius (the same arithmetic), but it stops at the first such triangle.
+  // radius (the same arithmetic), but it stops at the first such triangle, looking nearest
+  // boxes first.
   [[nodiscard]] bool hasTriangleWithin(const Vec3& query, double radius) const;
 
   // Inside test for closed meshes by ray crossings. A ray from `p` sums +1 for every triangle it
