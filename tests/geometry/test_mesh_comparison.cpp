@@ -168,6 +168,13 @@ TEST(MeasureHausdorff, RejectsEmptyMeshesByRole) {
   } catch (const InputError& error) {
     EXPECT_EQ(std::string(error.what()), "result mesh has no triangles");
   }
+  const HausdorffMeter meter(sphere, 10, 1);
+  try {
+    (void)meter.within(TriangleMesh{}, 1.0);
+    FAIL() << "no error";
+  } catch (const InputError& error) {
+    EXPECT_EQ(std::string(error.what()), "result mesh has no triangles");
+  }
   EXPECT_THROW((void)verifyContainment(TriangleMesh{}, sphere, BoundSide::Inner, 10, 1),
                InputError);
 }

@@ -379,11 +379,16 @@ struct Context {
   std::uint64_t seed;
 };
 
+// The seed of the random samples a measurement with `salt` draws.
+std::uint64_t sampleSeed(const Context& context, std::uint64_t salt) {
+  return context.seed * 1000003u + salt;
+}
+
 // The piece's concavity on samples of its hull (`salt` picks the random ones). The measurement
 // stops once the concavity reaches `stopAt`; returns false then (the concavity is at least that).
 bool measureConcavity(Cell& cell, const Context& context, std::uint64_t salt,
                       double stopAt = std::numeric_limits<double>::infinity()) {
-  SurfaceSampler samples(cell.hull.mesh, context.samples, context.seed * 1000003u + salt);
+  SurfaceSampler samples(cell.hull.mesh, context.samples, sampleSeed(context, salt));
   Farthest farthest;
   context.solid.largestDistance(samples, stopAt, farthest);
   cell.concavity = farthest.distance;
@@ -417,13 +422,14 @@ TriangleMesh bridgeTriangles(const Cell& merged, const Cell& a, const Cell& b) {
 // The measurement of the concavity of the merged hull of pieces a and b: the larger of theirs and
 // of the samples of the bridge between them (every random sample goes where the merge adds
 // concavity, so a narrow gap between the parts is rarely missed). It stops like measureConcavity
-// and resumes where it stopped when asked again with a higher limit.
+// and resumes where it stopped when asked again with a higher limit, which gives what measuring
+// afresh would: the parts are alive pieces, whose concavities are measured and do not change.
 class MergedConcavity {
  public:
   MergedConcavity(const Cell& merged, const Cell& a, const Cell& b, const Context& context,
                   std::uint64_t salt)
       : bridge_(bridgeTriangles(merged, a, b)),
-        samples_(bridge_, context.bridgeSamples, context.seed * 1000003u + salt) {
+        samples_(bridge_, context.bridgeSamples, sampleSeed(context, salt)) {
     farthest_.distance = std::max(a.concavity, b.concavity);
   }
   MergedConcavity(const MergedConcavity&) = delete;
