@@ -115,7 +115,8 @@ struct Cell {
   std::vector<std::uint32_t> polygonEnds;  // end offset of every polygon in polygonPoints
   std::vector<HullPlane> walls;            // n.x <= d inside
   std::vector<Vec3> corners;               // cell corners inside the solid
-  ConvexHull hull;  // a candidate's has no planes (buildCandidateHull), a kept cell's has
+  ConvexHull
+      hull;  // a candidate's has no planes (buildCandidateHull), a kept cell's has (keepHull)
   double hullVolume = 0.0;
   double concavity = 0.0;  // largest sampled distance from the hull to the solid
   Vec3 worstPoint = Vec3::Zero();
@@ -264,9 +265,9 @@ bool buildHull(Cell& cell, double snap) {
   return false;
 }
 
-// The hull of a candidate child of a cut, to rank the cuts by volume: quickHull (a point within
-// `snap` of the hull counts as inside), or buildHull where quickHull gives none. Its `planes` stay
-// empty until keepHull.
+// The hull of a candidate child of a cut or of a merged pair, to rank and measure it: quickHull (a
+// point within `snap` of the hull counts as inside), or buildHull where quickHull gives none. Its
+// `planes` stay empty until keepHull.
 bool buildCandidateHull(Cell& cell, double snap) {
   std::optional<TriangleMesh> mesh = quickHull(hullPoints(cell), snap);
   if (!mesh) return buildHull(cell, snap);
@@ -275,9 +276,10 @@ bool buildCandidateHull(Cell& cell, double snap) {
   return cell.hullVolume > 0.0;
 }
 
-// Gives a candidate whose concavity is measured (and so every cell that is kept) the hull of
-// buildHull, which contains every point; where qhull fails on them, the candidate hull with the
-// planes of its triangles.
+// Gives a candidate that is kept (a chosen child or an executed merge) the hull of buildHull, which
+// contains every point; where qhull fails on them, the candidate hull with the planes of its
+// triangles. Its concavity, measured on the candidate hull, stays: both hulls cover the same
+// points up to `snap`.
 void keepHull(Cell& cell, double snap) {
   if (!cell.hull.planes.empty()) return;  // built by buildHull already
   ConvexHull candidate = cell.hull;
@@ -504,8 +506,8 @@ std::vector<Vec3> pocketNormals(const Cell& cell, const Solid& solid) {
 // concavity grows with, and it is cheap to compare) and the cuts through the worst concavity
 // sample; nothing when no candidate cuts it in two. The children come with their concavity
 // measured and their polygons clipped. Candidates: axis-parallel and principal-axis planes at
-// evenly spaced positions and through the worst sample, and the pocket planes through it. Their
-// volumes come from quickHull; only the measured candidates get qhull's hulls (buildHull).
+// evenly spaced positions and through the worst sample, and the pocket planes through it. They are
+// ranked and measured on quickHull's hulls; only the chosen children get qhull's (keepHull).
 std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& context,
                                                std::uint64_t& measured) {
   struct Candidate {
@@ -572,11 +574,6 @@ std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& 
     toMeasure.push_back({i, measured});
     measured += 2;
   }
-  // They are sampled on the hulls of buildHull (whose facets are triangulated as fans).
-  runTasks(context.sharing, toMeasure.size(), [&](std::size_t k) {
-    keepHull(candidates[toMeasure[k].index].below, context.snap);
-    keepHull(candidates[toMeasure[k].index].above, context.snap);
-  });
   std::stable_sort(toMeasure.begin(), toMeasure.end(), [&](const auto& a, const auto& b) {
     return volume(candidates[a.index]) < volume(candidates[b.index]);
   });
@@ -597,6 +594,8 @@ std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& 
     best = m.index;
   }
   Candidate& chosen = candidates[best];
+  keepHull(chosen.below, context.snap);
+  keepHull(chosen.above, context.snap);
   clipPolygons(cell, chosen.below.walls.back(), context.tolerance, chosen.below);
   clipPolygons(cell, chosen.above.walls.back(), context.tolerance, chosen.above);
   return std::pair{std::move(chosen.below), std::move(chosen.above)};
@@ -609,7 +608,7 @@ std::optional<Cell> mergedCell(const Cell& a, const Cell& b, double snap) {
   merged.points.insert(merged.points.end(), b.hull.mesh.vertices.begin(),
                        b.hull.mesh.vertices.end());
   sortPoints(merged.points);
-  if (!buildHull(merged, snap)) return std::nullopt;
+  if (!buildCandidateHull(merged, snap)) return std::nullopt;
   return merged;
 }
 
@@ -634,8 +633,9 @@ bool boxesTouch(const Cell& a, const Cell& b, double tolerance) {
 // the leaves it covers and a state by its pieces, so every merged piece is built and measured
 // once and every greedy completion followed once, however many look-aheads meet them.
 // Concavities are measured lazily: a merged piece starts with its parts' larger concavity as a
-// lower bound; its hull is built and measured only when that bound could win, and the
-// measurement stops once it passes the best pair's (or a completion's bar).
+// lower bound; its hull is built (by quickHull) and measured only when that bound could win, and
+// the measurement stops once it passes the best pair's (or a completion's bar). An executed merge
+// gets qhull's hull (keepHull).
 class MergeSearch {
  public:
   MergeSearch(std::vector<Cell>& leaves, const Context& context, double tolerance,
@@ -658,6 +658,7 @@ class MergeSearch {
       if (forcedLeft == 0 && concavity(chosen->node) > budget) break;
       if (forcedLeft > 1 && forcedLeft <= kLookaheadWindow) chosen = lookahead(*chosen, maxPieces);
       apply(alive_, *chosen);
+      keepHull(nodes_[chosen->node].cell, context_.snap);
     }
     std::vector<Cell> pieces;
     for (const std::uint32_t id : alive_) pieces.push_back(std::move(nodes_[id].cell));
