@@ -188,6 +188,26 @@ TEST(BoundingMesh, DistanceLimitHoldsAndShrinksLargeMeshesTenfold) {
   EXPECT_EQ(contained.violations, 0u);
 }
 
+TEST(BoundingMesh, InnerDistanceSearchStaysInsideAndWithinTheLimit) {
+  // Each run of the search goes on from the last one that fitted: the result must still be a
+  // valid inner bound, within the limit, and simpler than the input.
+  const TriangleMesh mesh = loadOriented(fs::path(KABOUM_DATA_DIR) / "meshes/spot.obj");
+  const double epsilon = 0.01 * analyzeMesh(mesh).diagonal;
+  BoundingMeshOptions options;
+  options.side = BoundSide::Inner;
+  HausdorffReport measured;
+  const BoundingMeshResult result = simplifyBoundingWithin(mesh, options, epsilon, 20000, measured);
+  EXPECT_GE(result.stats.runs, 3);
+  EXPECT_LE(std::max(measured.originalToResult.max, measured.resultToOriginal.max), epsilon);
+  // The quadric error overestimates the distance, so the search gets further than one run at ε/2.
+  options.maxError = 0.5 * epsilon;
+  EXPECT_LT(result.mesh.vertices.size(), simplifyBounding(mesh, options).mesh.vertices.size());
+  const MeshAnalysis report = analyzeMesh(result.mesh);
+  EXPECT_TRUE(report.closed && report.edgeManifold && report.consistentlyOriented);
+  EXPECT_EQ(verifyContainment(mesh, result.mesh, BoundSide::Inner, 20000, 5).violations, 0u);
+  EXPECT_EQ(countSelfIntersections(result.mesh), 0u);
+}
+
 TEST(BoundingMesh, AtTenPercentTheDistanceStaysBelowOnePercentOfTheDiagonal) {
   const TriangleMesh mesh = loadOriented(fs::path(KABOUM_DATA_DIR) / "meshes/rocker-arm.obj");
   BoundingMeshOptions options;

@@ -79,7 +79,20 @@ class BoundingMeshSimplifier {
   BoundingMeshSimplifier(const TriangleMesh& input, const BoundingMeshOptions& options)
       : options_(options), positions_(input.vertices), triangles_(input.triangles) {}
 
+  // Algorithm 2 up to options.maxError: start(), advance(maxError), result().
   BoundingMeshResult run();
+  // Builds the mesh structures and queues every edge; then advance() contracts.
+  void start();
+  // Contracts edges, cheapest first, while the cheapest exact cost is within maxError (a distance)
+  // and the vertex target is not reached. Advancing again with a larger limit goes on from here:
+  // the edges the last limit stopped are queued again.
+  void advance(double maxError);
+  // The mesh as it is now, and the statistics since start().
+  [[nodiscard]] BoundingMeshResult result() const;
+  // Where later advance() calls report their progress (options.progress at first).
+  void reportProgressTo(std::function<void(double)> progress) {
+    options_.progress = std::move(progress);
+  }
 
  private:
   void buildAdjacency();
@@ -148,13 +161,13 @@ class BoundingMeshSimplifier {
   std::vector<std::uint32_t> markA_, markB_;
   std::vector<std::uint32_t> triangleMark_;  // stamps for excluding/deduplicating triangles
   std::vector<Box3> boxes_;                  // each live triangle's box as registered in grid_
-  std::unique_ptr<TriangleGrid> grid_;       // the live triangles with no hub corner (inGrid_)
+  std::optional<TriangleGrid> grid_;         // the live triangles with no hub corner (inGrid_)
   std::vector<std::uint8_t> inGrid_;
   // A hub (a vertex of valence ≥ kHubValence) and the angular index of its star: each star
   // triangle (v, p, q) is registered by the box of its directions from v (directionBox of p, q).
   struct Hub {
     std::uint32_t vertex = kNone;
-    std::unique_ptr<TriangleGrid> directions, coarse;  // coarse: kHubCoarse times larger cells
+    std::optional<TriangleGrid> directions, coarse;  // coarse: kHubCoarse times larger cells
     // Since the hub last moved: a box containing every star triangle, the least distance from the
     // hub to a far edge, the longest edge (bounded by a box diagonal), and the star triangles
     // without a direction box (while there are any, queries enumerate the whole star).
@@ -193,6 +206,10 @@ class BoundingMeshSimplifier {
   double costSlack_ = 0.0;  // absolute rounding allowance of a cost: 10⁻¹⁰ of the diagonal²
   IndexedMinHeap queue_;    // queued edges by key, ties by edge id
   std::vector<std::uint32_t> parked_;  // parked edges (and some no longer parked)
+  std::vector<std::uint32_t>
+      overLimit_;           // edges parked because the limit of advance() stopped them
+  double worstCost_ = 0.0;  // largest exact cost of an executed contraction
+  double seconds_ = 0.0;    // spent in start() and advance() on the way to this state
   // Scratch, reused by every call so the main loop does not allocate once warmed up.
   std::vector<std::uint32_t> fanA_, fanB_, neighbours_, solveFanU_, solveFanV_;
   struct NewTriangle {  // a triangle of the fan a contraction would create
@@ -793,7 +810,7 @@ bool BoundingMeshSimplifier::newFanCrossesMesh(const Contraction& c) {
 }
 
 void BoundingMeshSimplifier::buildGrid(double cellSize) {
-  grid_ = std::make_unique<TriangleGrid>(cellSize, triangles_.size());
+  grid_.emplace(cellSize, triangles_.size());
   for (std::uint32_t t = 0; t < triangles_.size(); ++t) {
     if (triangleAlive_[t] && inGrid_[t]) grid_->insert(t, boxes_[t]);
   }
@@ -814,10 +831,10 @@ void BoundingMeshSimplifier::acquireHub(std::uint32_t v) {
   if (!hub.directions) {
     const double valence = std::max<double>(triangleCount_[v], 1.0);
     const double cellSize = std::max(4.0 * std::numbers::pi / valence, 8.0 * kHubMargin);
-    hub.directions = std::make_unique<TriangleGrid>(cellSize, triangleCount_[v]);
+    hub.directions.emplace(cellSize, triangleCount_[v]);
     // The coarse index holds about one entry per triangle (the fine one a few): a third of the
     // table and pool keeps its memory at a third.
-    hub.coarse = std::make_unique<TriangleGrid>(kHubCoarse * cellSize, triangleCount_[v] / 3);
+    hub.coarse.emplace(kHubCoarse * cellSize, triangleCount_[v] / 3);
   }
   const float inf = std::numeric_limits<float>::infinity();
   hub.starBox = {Eigen::Vector3f::Constant(inf), Eigen::Vector3f::Constant(-inf)};
@@ -1003,7 +1020,13 @@ TriangleMesh BoundingMeshSimplifier::compact() const {
 }
 
 BoundingMeshResult BoundingMeshSimplifier::run() {
-  const auto start = std::chrono::steady_clock::now();
+  start();
+  advance(options_.maxError);
+  return result();
+}
+
+void BoundingMeshSimplifier::start() {
+  const auto startTime = std::chrono::steady_clock::now();
   const std::size_t n = positions_.size();
   vertexLocked_.assign(n, 0);
   vertexAlive_.assign(n, 1);
@@ -1075,16 +1098,25 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
   for (const std::uint32_t e : interiorEdges) {
     if (!vertexLocked_[edgeEnds_[e][0]] && !vertexLocked_[edgeEnds_[e][1]]) queueEdge(e);
   }
+  seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - startTime).count();
+}
 
+void BoundingMeshSimplifier::advance(double maxError) {
+  const auto startTime = std::chrono::steady_clock::now();
+  for (const std::uint32_t e : overLimit_) {
+    if (edgeState_[e] == EdgeState::Parked) queueEdge(e);
+  }
+  overLimit_.clear();
   // Algorithm 2 with a lazy queue. Every queued edge's key is at most its exact cost (a minimum
   // over fewer planes is at most the minimum over all), and a popped edge is first given a tighter
   // bound, then solved if it is not yet: it is contracted only once it is the least by exact cost.
   // So edges are taken in exactly the order of a queue holding every exact cost
   // (options_.lazyQueue = false), ties broken by edge id.
+  options_.maxError = maxError;
   const std::size_t target = options_.targetVertices;
-  const double maxCost = options_.maxError * options_.maxError;
+  const double maxCost = maxError * maxError;
   const std::size_t toRemove = aliveVertices_ > target ? aliveVertices_ - target : 0;
-  double worstCost = 0.0;
+  const std::size_t contractionsBefore = stats_.contractions;
   while (aliveVertices_ > target) {
     if (queue_.empty()) {
       if (!revisitParked()) break;
@@ -1094,6 +1126,7 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
     const double cost = queue_.topKey();
     if (cost > maxCost) {  // every queued exact cost is at least this: none may be contracted
       park(e);
+      overLimit_.push_back(e);
       continue;
     }
     if (edgeState_[e] == EdgeState::Lower) {
@@ -1113,14 +1146,15 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
       buildGrid(grid_->cellSize() * std::sqrt(2.0));  // triangles grew: coarser cells
     }
     switch (contract(e)) {
-      case Outcome::Done:
+      case Outcome::Done: {
         ++stats_.contractions;
-        worstCost = std::max(worstCost, cost);
-        if (options_.progress && stats_.contractions % 8192 == 0 && toRemove > 0) {
-          options_.progress(static_cast<double>(stats_.contractions) /
-                            static_cast<double>(toRemove));
+        worstCost_ = std::max(worstCost_, cost);
+        const std::size_t made = stats_.contractions - contractionsBefore;
+        if (options_.progress && made % 8192 == 0 && toRemove > 0) {
+          options_.progress(static_cast<double>(made) / static_cast<double>(toRemove));
         }
         break;
+      }
       case Outcome::Topology:
         ++stats_.rejectedTopology;
         park(e);
@@ -1136,20 +1170,24 @@ BoundingMeshResult BoundingMeshSimplifier::run() {
     }
   }
 
+  seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - startTime).count();
+  if (options_.progress) options_.progress(1.0);
+}
+
+BoundingMeshResult BoundingMeshSimplifier::result() const {
   BoundingMeshResult result;
   result.mesh = compact();
-  stats_.outputVertices = result.mesh.vertices.size();
-  stats_.quadricError = std::sqrt(worstCost);
-  if (aliveVertices_ <= target) {
-    stats_.stopReason = "vertex target reached";
-  } else if (std::isfinite(options_.maxError)) {
-    stats_.stopReason = "no contraction left within the error limit";
-  } else {
-    stats_.stopReason = "no contraction left that keeps the mesh valid and bounding";
-  }
-  stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (options_.progress) options_.progress(1.0);
   result.stats = stats_;
+  result.stats.outputVertices = result.mesh.vertices.size();
+  result.stats.quadricError = std::sqrt(worstCost_);
+  if (aliveVertices_ <= options_.targetVertices) {
+    result.stats.stopReason = "vertex target reached";
+  } else if (std::isfinite(options_.maxError)) {
+    result.stats.stopReason = "no contraction left within the error limit";
+  } else {
+    result.stats.stopReason = "no contraction left that keeps the mesh valid and bounding";
+  }
+  result.stats.seconds = seconds_;
   return result;
 }
 
@@ -1162,24 +1200,27 @@ BoundingMeshResult simplifyBounding(const TriangleMesh& input, const BoundingMes
 BoundingMeshResult simplifyBoundingWithin(const TriangleMesh& input, BoundingMeshOptions options,
                                           double epsilon, std::size_t samples,
                                           HausdorffReport& measured, int maxRuns) {
-  int runs = 0;
   const HausdorffMeter meter(input, samples, 1);
-  const auto attempt = [&](double scale) {
-    ++runs;
-    options.maxError = scale * epsilon;
-    return simplifyBounding(input, options);
-  };
-  BoundingMeshResult best;
-  bool haveBest = false;
+  // Every limit tried is above the largest one known to fit, so each run goes on from a copy of
+  // that one's simplifier instead of starting over (at first: after the contractions of cost 0).
+  const std::function<void(double)> progress = std::move(options.progress);
+  options.progress = nullptr;
+  BoundingMeshSimplifier fitting(input, options);
+  fitting.start();
+  fitting.advance(0.0);
+  fitting.reportProgressTo(progress);
+  int runs = 0;
   double fits = 0.0, fails = 0.0;  // largest scale known to fit, smallest known to fail (0: none)
   double scale = 1.0;
   while (runs < maxRuns) {
-    BoundingMeshResult result = attempt(scale);
+    ++runs;
+    BoundingMeshSimplifier attempt = fitting;
+    attempt.advance(scale * epsilon);
+    const BoundingMeshResult result = attempt.result();
     if (meter.within(result.mesh, epsilon)) {
       fits = scale;
-      best = std::move(result);
-      haveBest = true;
-      if (best.stats.stopReason == "vertex target reached") break;  // cannot go further
+      fitting = std::move(attempt);
+      if (result.stats.stopReason == "vertex target reached") break;  // cannot go further
     } else {
       fails = scale;
     }
@@ -1192,7 +1233,7 @@ BoundingMeshResult simplifyBoundingWithin(const TriangleMesh& input, BoundingMes
       scale = std::sqrt(fits * fails);
     }
   }
-  if (!haveBest) best = attempt(0.0);  // nothing fitted: no contraction at all
+  BoundingMeshResult best = fitting.result();  // nothing fitted: the contractions of cost 0 only
   measured = meter.measure(best.mesh);
   if (best.stats.stopReason != "vertex target reached") {
     best.stats.stopReason = "largest simplification found within the distance limit";

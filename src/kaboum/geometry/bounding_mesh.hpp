@@ -42,6 +42,7 @@ struct BoundingMeshStats {
   std::size_t rejectedInfeasible = 0, rejectedTopology = 0, rejectedGeometry = 0;
   std::size_t rejectedCrossing = 0;  // the new triangles would have crossed the mesh
   double quadricError = 0.0;  // largest quadric error (as a distance) of an executed contraction
+  // Time in Algorithm 2 on the way to this result (for a distance search: the runs it built on).
   double seconds = 0.0;
   int runs = 1;            // runs of Algorithm 2 (more than one when searching for a distance)
   std::string stopReason;  // "vertex target reached", or why no further contraction was valid
@@ -64,7 +65,8 @@ BoundingMeshResult simplifyBounding(const TriangleMesh& input, const BoundingMes
 // both directions on dense samples (every vertex, edge midpoint and `samples` random points), stays
 // within `epsilon`. The quadric error of Algorithm 2 only estimates that distance (it overestimates
 // it on smooth meshes), so the quadric-error limit is searched: ε first, then bisection on a
-// multiple of ε, at most `maxRuns` runs of Algorithm 2. `options.targetVertices` still applies;
+// multiple of ε, at most `maxRuns` runs of Algorithm 2, each going on from where the largest
+// limit known to fit stopped instead of from the input. `options.targetVertices` still applies;
 // `options.maxError` is ignored. `measured` receives the distances of the returned result.
 BoundingMeshResult simplifyBoundingWithin(const TriangleMesh& input, BoundingMeshOptions options,
                                           double epsilon, std::size_t samples,
