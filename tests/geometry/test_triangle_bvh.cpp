@@ -189,6 +189,7 @@ TEST(TriangleBvh, ContainsMatchesWindingNumber) {
       ASSERT_NEAR(winding, std::round(winding), 1e-6) << p.transpose();
       const bool expected = std::lround(winding) != 0;
       ASSERT_EQ(bvh.contains(p), expected) << p.transpose() << " winding " << winding;
+      ASSERT_EQ(bvh.containsInClosedMesh(p), expected) << p.transpose() << " winding " << winding;
       ++(expected ? inside : outside);
     }
     EXPECT_GT(inside, 300u);
@@ -210,6 +211,7 @@ TEST(TriangleBvh, ContainsRetriesRaysThroughEdgesAndVertices) {
         const double winding = windingNumber(box, p);
         if (std::abs(winding - std::round(winding)) > 1e-9) continue;  // on the surface
         EXPECT_EQ(bvh.contains(p), std::lround(winding) != 0) << p.transpose();
+        EXPECT_EQ(bvh.containsInClosedMesh(p), std::lround(winding) != 0) << p.transpose();
         ++checked;
         inside += std::lround(winding) != 0 ? 1 : 0;
       }
@@ -222,10 +224,15 @@ TEST(TriangleBvh, ContainsRetriesRaysThroughEdgesAndVertices) {
 TEST(TriangleBvh, SurfacePointsCountAsInside) {
   const TriangleMesh box = makeBox(Vec3(0, 0, 0), Vec3(1, 1, 1), 2);
   const TriangleBvh bvh(box);
-  for (const Vec3& v : box.vertices) EXPECT_TRUE(bvh.contains(v)) << v.transpose();
-  EXPECT_TRUE(bvh.contains(Vec3(0.3, 0.7, 1.0)));
-  EXPECT_FALSE(bvh.contains(Vec3(0.3, 0.7, 1.0 + 1e-9)));
-  EXPECT_TRUE(bvh.contains(Vec3(0.3, 0.7, 1.0 - 1e-9)));
+  for (const Vec3& v : box.vertices) {
+    EXPECT_TRUE(bvh.contains(v)) << v.transpose();
+    EXPECT_TRUE(bvh.containsInClosedMesh(v)) << v.transpose();
+  }
+  for (const auto& test : {&TriangleBvh::contains, &TriangleBvh::containsInClosedMesh}) {
+    EXPECT_TRUE((bvh.*test)(Vec3(0.3, 0.7, 1.0)));
+    EXPECT_FALSE((bvh.*test)(Vec3(0.3, 0.7, 1.0 + 1e-9)));
+    EXPECT_TRUE((bvh.*test)(Vec3(0.3, 0.7, 1.0 - 1e-9)));
+  }
 }
 
 TEST(TriangleBvh, InsideTestDirectionsAreUnitAndIrregular) {

@@ -71,11 +71,12 @@ struct Farthest {
 // The solid enclosed by the closed bound: inside tests and distances to its surface.
 class Solid {
  public:
-  Solid(const TriangleMesh& surface, double tolerance) : bvh_(surface), tolerance_(tolerance) {}
+  Solid(const TriangleMesh& surface, double tolerance)
+      : bvh_(surface), tolerance_(tolerance), closed_(isClosedAndOriented(surface)) {}
 
   // Inside, or on the surface up to the tolerance (a corner there is kept, which is harmless).
   [[nodiscard]] bool contains(const Vec3& p) const {
-    return bvh_.hasTriangleWithin(p, tolerance_) || bvh_.contains(p);
+    return bvh_.hasTriangleWithin(p, tolerance_) || inside(p);
   }
   [[nodiscard]] Vec3 closestPoint(const Vec3& p) const { return bvh_.closest(p).point; }
 
@@ -92,7 +93,7 @@ class Solid {
       if (samples.produced() == 1) farthest.where = p;
       // Beyond the largest distance so far: it counts unless it is inside (many samples on cut
       // faces are, and then need no closest point).
-      if (bvh_.hasTriangleWithin(p, farthest.distance) || bvh_.contains(p)) continue;
+      if (bvh_.hasTriangleWithin(p, farthest.distance) || inside(p)) continue;
       farthest.distance = bvh_.closest(p).distance;
       farthest.where = p;
       if (farthest.distance >= stopAt) {
@@ -103,8 +104,18 @@ class Solid {
   }
 
  private:
+  static bool isClosedAndOriented(const TriangleMesh& surface) {
+    const MeshAnalysis analysis = analyzeMesh(surface);
+    return analysis.closed && analysis.edgeManifold && analysis.consistentlyOriented;
+  }
+  // One ray decides where every ray gives the same winding number, else the rays vote.
+  [[nodiscard]] bool inside(const Vec3& p) const {
+    return closed_ ? bvh_.containsInClosedMesh(p) : bvh_.contains(p);
+  }
+
   TriangleBvh bvh_;
   double tolerance_;
+  bool closed_;  // closed, edge-manifold and consistently oriented
 };
 
 // The part of the bound inside one convex cell of the hierarchical split: the bound's triangles

@@ -647,6 +647,13 @@ bool TriangleBvh::contains(const Vec3& p) const {
   return insideVotes > outsideVotes;
 }
 
+bool TriangleBvh::containsInClosedMesh(const Vec3& p) const {
+  for (const Vec3& direction : insideTestDirections()) {
+    if (const std::optional<int> winding = rayWinding(p, direction)) return *winding != 0;
+  }
+  return true;
+}
+
 bool TriangleBvh::intersectsTriangle(const Vec3& a, const Vec3& b, const Vec3& c,
                                      std::span<const std::uint32_t> ignoreVertexIds) const {
   if (isDegenerate(a, b, c)) return false;

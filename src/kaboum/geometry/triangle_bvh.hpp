@@ -70,6 +70,9 @@ class TriangleBvh {
   // every ray finds on a face is on the surface and counts as inside. On a closed mesh every valid
   // ray gives the same winding number; on an open one the answer depends on the directions.
   [[nodiscard]] bool contains(const Vec3& p) const;
+  // contains() for a mesh known to be closed and consistently oriented: there the first valid ray
+  // decides (a point every ray finds on a face counts as inside, as in contains()).
+  [[nodiscard]] bool containsInClosedMesh(const Vec3& p) const;
 
   // The fixed, deliberately irregular unit ray directions of contains(), in the order tried.
   static std::span<const Vec3> insideTestDirections();
