@@ -5,7 +5,6 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <memory>
 #include <numbers>
 #include <optional>
 #include <vector>
@@ -206,8 +205,8 @@ class BoundingMeshSimplifier {
   double costSlack_ = 0.0;  // absolute rounding allowance of a cost: 10⁻¹⁰ of the diagonal²
   IndexedMinHeap queue_;    // queued edges by key, ties by edge id
   std::vector<std::uint32_t> parked_;  // parked edges (and some no longer parked)
-  std::vector<std::uint32_t>
-      overLimit_;           // edges parked because the limit of advance() stopped them
+  // Edges parked because the limit of advance() stopped them, queued again by the next advance().
+  std::vector<std::uint32_t> overLimit_;
   double worstCost_ = 0.0;  // largest exact cost of an executed contraction
   double seconds_ = 0.0;    // spent in start() and advance() on the way to this state
   // Scratch, reused by every call so the main loop does not allocate once warmed up.
