@@ -126,8 +126,8 @@ struct Cell {
   std::vector<std::uint32_t> polygonEnds;  // end offset of every polygon in polygonPoints
   std::vector<HullPlane> walls;            // n.x <= d inside
   std::vector<Vec3> corners;               // cell corners inside the solid
-  ConvexHull
-      hull;  // a candidate's has no planes (buildCandidateHull), a kept cell's has (keepHull)
+  // A candidate's has no planes (buildCandidateHull), a kept cell's has (keepHull).
+  ConvexHull hull;
   double hullVolume = 0.0;
   double concavity = 0.0;  // largest sampled distance from the hull to the solid
   Vec3 worstPoint = Vec3::Zero();
