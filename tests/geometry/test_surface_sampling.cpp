@@ -77,7 +77,6 @@ TEST(SampleSurface, ZeroAreaTrianglesGetNoRandomPoints) {
   EXPECT_EQ(sampleSurface(flat, 100, 1).size(), 3u + 3u);
 }
 
-}  // namespace
 TEST(SurfaceSampler, MakesTheSamplesOfSampleSurfaceOneAtATime) {
   const TriangleMesh torus = makeTorus(1.0, 0.3, 12, 8);
   const std::vector<Vec3> all = sampleSurface(torus, 700, 9);
@@ -120,4 +119,5 @@ TEST(SurfaceSampler, ResumesWhereItStopped) {
   EXPECT_EQ(empty.produced(), 0u);
 }
 
+}  // namespace
 }  // namespace kaboum
