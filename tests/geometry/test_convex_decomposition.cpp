@@ -187,6 +187,30 @@ TEST(ConvexDecomposition, RealLinkAtTheDefaultsIsTighterThanTheReference) {
   EXPECT_LE(quality.approximationToOriginal.max, result.stats.estimatedError);
 }
 
+// After merging, re-cutting the worst piece (with a neighbour, or alone and merging another pair)
+// keeps only moves that lower the largest concavity: on the KR5 wrist, where every merge order
+// leaves a loose piece, some moves are kept, the estimate drops, and the pieces still contain the
+// input.
+TEST(ConvexDecomposition, ReCutsAfterMergingLowerTheWorstConcavityAndStillContain) {
+  const TriangleMesh mesh = dataMesh("kr5-wrist.stl");
+  DecompositionOptions merged;
+  merged.refineRounds = 0;
+  DecompositionOptions refined;
+  refined.refineRounds = 10;
+  const Decomposition before = decomposeBounding(mesh, merged);
+  const Decomposition after = decomposeBounding(mesh, refined);
+  EXPECT_EQ(before.stats.refinements, 0u);
+  EXPECT_GT(after.stats.refinements, 0u);
+  EXPECT_LE(after.stats.refinements, refined.refineRounds);
+  EXPECT_EQ(after.pieces.size(), before.pieces.size());
+  EXPECT_LT(after.stats.estimatedError, before.stats.estimatedError);
+  expectBoundingDecomposition(mesh, after, DecompositionOptions{}.maxPieces);
+  const DecompositionQuality quality =
+      measureDecomposition(after.closedInput, after.pieces, 20000, 5);
+  EXPECT_EQ(quality.uncovered, 0u);
+  EXPECT_LE(quality.approximationToOriginal.max, after.stats.estimatedError);
+}
+
 TEST(ConvexDecomposition, PieceLimitIsRespected) {
   const TriangleMesh mesh = dataMesh("kr5-wrist.stl");
   for (const std::size_t limit : {1u, 3u}) {

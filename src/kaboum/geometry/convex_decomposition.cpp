@@ -50,6 +50,7 @@ constexpr int kMaxStalls = 8;
 constexpr double kStallRatio = 0.9;
 constexpr std::size_t kShortlist = 1;  // least-volume cuts whose children's concavity is measured
 constexpr int kPocketNormals = 6;  // cut planes through the worst sample, turned about its depth
+constexpr std::size_t kRefineNeighbours = 4;  // neighbours a re-cut of the worst piece tries
 
 double meshVolume(const TriangleMesh& mesh) {
   double sixVolume = 0.0;
@@ -635,6 +636,12 @@ bool boxesTouch(const Cell& a, const Cell& b, double tolerance) {
   return first.intersects(box(b));
 }
 
+// A piece with the leaf cells it covers (their polygons, walls and inside corners).
+struct Piece {
+  Cell cell;
+  std::vector<Cell> region;
+};
+
 // Merging of neighbouring pieces (touching bounding boxes) down to `maxPieces`, then on while the
 // merged concavity stays within `budget`. Greedy takes the pair whose merged piece has the
 // smallest concavity. While at most kLookaheadWindow forced merges are left, each of the
@@ -660,7 +667,7 @@ class MergeSearch {
   }
 
   // Merges as described above; returns the pieces left.
-  std::vector<Cell> run(std::size_t maxPieces, double budget) {
+  std::vector<Piece> run(std::size_t maxPieces, double budget) {
     constexpr double kNoBar = std::numeric_limits<double>::infinity();
     while (alive_.size() > 1) {
       const std::size_t forcedLeft = alive_.size() > maxPieces ? alive_.size() - maxPieces : 0;
@@ -671,8 +678,13 @@ class MergeSearch {
       apply(alive_, *chosen);
       keepHull(nodes_[chosen->node].cell, context_.snap);
     }
-    std::vector<Cell> pieces;
-    for (const std::uint32_t id : alive_) pieces.push_back(std::move(nodes_[id].cell));
+    std::vector<Piece> pieces;
+    for (const std::uint32_t id : alive_) {
+      Piece piece;
+      for (const std::uint32_t leaf : nodes_[id].leaves) piece.region.push_back(nodes_[leaf].cell);
+      piece.cell = std::move(nodes_[id].cell);
+      pieces.push_back(std::move(piece));
+    }
     return pieces;
   }
 
@@ -844,6 +856,250 @@ class MergeSearch {
   std::map<std::vector<std::uint32_t>, Outcome> outcomes_;  // by a state's sorted pieces
   std::vector<std::uint32_t> alive_;                        // the current pieces, in leaf order
 };
+
+// The part of a region on the side n.x <= d of `cut`: every cell clipped to it (its polygons only
+// when `polygons`), cells left with neither surface nor inside corners dropped.
+std::vector<Cell> clipRegion(const std::vector<Cell>& region, const HullPlane& cut,
+                             const Context& context, bool polygons) {
+  std::vector<Cell> clipped;
+  const auto side = [&](const Vec3& p) { return cut.normal.dot(p) - cut.offset; };
+  for (const Cell& cell : region) {
+    // A cell whose surface and inside corners all lie clearly on one side is not crossed where it
+    // holds solid: it stays whole on that side (the cut adds no corner in the solid) and is left
+    // out on the other.
+    const auto clearly = [&](auto test) {
+      return std::all_of(cell.points.begin(), cell.points.end(), test) &&
+             std::all_of(cell.corners.begin(), cell.corners.end(), test);
+    };
+    if (clearly([&](const Vec3& p) { return side(p) > context.tolerance; })) continue;
+    if (clearly([&](const Vec3& p) { return side(p) < -context.tolerance; })) {
+      clipped.push_back(cell);
+      continue;
+    }
+    Cell child;
+    clipPoints(cell, cut, context.tolerance, child);
+    child.walls = cell.walls;
+    child.walls.push_back(cut);
+    child.corners = childCorners(cell.corners, child.walls, context.solid, context.tolerance);
+    if (child.points.empty() && child.corners.empty()) continue;
+    if (polygons) {
+      clipPolygons(cell, cut, context.tolerance, child);
+      if (!buildCandidateHull(child, context.snap)) child.hull = {};
+    }
+    clipped.push_back(std::move(child));
+  }
+  return clipped;
+}
+
+// The candidate hull of a region's points: its cells' hull vertices, or for a cell without a hull
+// its polygon corners and inside corners.
+std::optional<Cell> regionHull(const std::vector<Cell>& region, const Context& context) {
+  Cell hull;
+  for (const Cell& cell : region) {
+    const std::vector<Vec3>& vertices = cell.hull.mesh.vertices;
+    if (!vertices.empty()) {
+      hull.points.insert(hull.points.end(), vertices.begin(), vertices.end());
+      continue;
+    }
+    hull.points.insert(hull.points.end(), cell.points.begin(), cell.points.end());
+    hull.points.insert(hull.points.end(), cell.corners.begin(), cell.corners.end());
+  }
+  sortPoints(hull.points);
+  if (!buildCandidateHull(hull, context.snap)) return std::nullopt;
+  return hull;
+}
+
+// The cut of a region whose two parts' larger concavity is smallest and below `bar`, among the
+// cuts of bestSplit for the hull `vertices` with the worst sample `worstPoint`; nothing when none
+// is below `bar`.
+std::optional<std::pair<HullPlane, double>> bestRegionCut(const std::vector<Cell>& region,
+                                                          const std::vector<Vec3>& vertices,
+                                                          const Vec3& worstPoint, double bar,
+                                                          const Context& context,
+                                                          std::uint64_t& measured) {
+  Cell shape;
+  shape.hull.mesh.vertices = vertices;
+  shape.worstPoint = worstPoint;
+  std::vector<HullPlane> cuts;
+  for (const Vec3& axis : cutAxes(shape)) {
+    double lo = std::numeric_limits<double>::infinity();
+    double hi = -lo;
+    for (const Vec3& v : vertices) {
+      lo = std::min(lo, axis.dot(v));
+      hi = std::max(hi, axis.dot(v));
+    }
+    for (int k = 1; k <= kCutsPerAxis; ++k) {
+      cuts.push_back({axis, lo + (hi - lo) * k / (kCutsPerAxis + 1)});
+    }
+    cuts.push_back({axis, axis.dot(worstPoint)});
+  }
+  for (const Vec3& normal : pocketNormals(shape, context.solid)) {
+    cuts.push_back({normal, normal.dot(worstPoint)});
+  }
+  std::vector<std::optional<std::pair<Cell, Cell>>> children(cuts.size());
+  runTasks(context.sharing, cuts.size(), [&](std::size_t k) {
+    auto below = regionHull(clipRegion(region, cuts[k], context, false), context);
+    if (!below) return;
+    auto above = regionHull(
+        clipRegion(region, HullPlane{-cuts[k].normal, -cuts[k].offset}, context, false), context);
+    if (!above) return;
+    children[k] = std::pair{std::move(*below), std::move(*above)};
+  });
+  std::optional<std::pair<HullPlane, double>> best;
+  for (std::size_t k = 0; k < cuts.size(); ++k) {
+    if (!children[k]) continue;
+    auto& [below, above] = *children[k];
+    const std::uint64_t salt = measured;
+    measured += 2;
+    if (!measureConcavity(below, context, salt, bar) ||
+        !measureConcavity(above, context, salt + 1, bar)) {
+      continue;
+    }
+    bar = std::max(below.concavity, above.concavity);
+    best = std::pair{cuts[k], bar};
+  }
+  return best;
+}
+
+// The two pieces `cut` makes of a region, measured again on more samples; nothing unless both are
+// below `bar`.
+std::optional<std::pair<Piece, Piece>> cutPieces(const std::vector<Cell>& region,
+                                                 const HullPlane& cut, double bar,
+                                                 const Context& context, std::uint64_t& measured) {
+  Piece below, above;
+  below.region = clipRegion(region, cut, context, true);
+  above.region = clipRegion(region, HullPlane{-cut.normal, -cut.offset}, context, true);
+  auto belowHull = regionHull(below.region, context);
+  auto aboveHull = regionHull(above.region, context);
+  if (!belowHull || !aboveHull) return std::nullopt;
+  below.cell = std::move(*belowHull);
+  above.cell = std::move(*aboveHull);
+  Context thorough = context;
+  thorough.samples = context.bridgeSamples;
+  const std::uint64_t salt = measured;
+  measured += 2;
+  if (!measureConcavity(below.cell, thorough, salt, bar) ||
+      !measureConcavity(above.cell, thorough, salt + 1, bar)) {
+    return std::nullopt;
+  }
+  keepHull(below.cell, context.snap);
+  keepHull(above.cell, context.snap);
+  return std::pair{std::move(below), std::move(above)};
+}
+
+std::vector<Cell> joinedRegion(const Piece& a, const Piece& b) {
+  std::vector<Cell> region = a.region;
+  region.insert(region.end(), b.region.begin(), b.region.end());
+  return region;
+}
+
+std::vector<Vec3> joinedVertices(const Piece& a, const Piece& b) {
+  std::vector<Vec3> vertices = a.cell.hull.mesh.vertices;
+  vertices.insert(vertices.end(), b.cell.hull.mesh.vertices.begin(),
+                  b.cell.hull.mesh.vertices.end());
+  return vertices;
+}
+
+// The pieces touching piece `worst`, nearest its worst sample first (by how far that sample lies
+// beyond their facet planes), at most kRefineNeighbours of them.
+std::vector<std::size_t> nearestNeighbours(const std::vector<Piece>& pieces, std::size_t worst,
+                                           double touchTolerance) {
+  const Cell& cell = pieces[worst].cell;
+  std::vector<std::pair<double, std::size_t>> byExcess;
+  for (std::size_t q = 0; q < pieces.size(); ++q) {
+    if (q == worst || !boxesTouch(cell, pieces[q].cell, touchTolerance)) continue;
+    double excess = 0.0;
+    for (const HullPlane& h : pieces[q].cell.hull.planes) {
+      excess = std::max(excess, h.normal.dot(cell.worstPoint) - h.offset);
+    }
+    byExcess.emplace_back(excess, q);
+  }
+  std::sort(byExcess.begin(), byExcess.end());
+  std::vector<std::size_t> nearest;
+  for (const auto& [excess, q] : byExcess) {
+    if (nearest.size() == kRefineNeighbours) break;
+    nearest.push_back(q);
+  }
+  return nearest;
+}
+
+// The touching pair of `pieces` whose merged piece has the smallest concavity below `bar` (bridge
+// measure, as in MergeSearch), with that piece; nothing when none is below `bar`.
+std::optional<std::pair<std::pair<std::size_t, std::size_t>, Cell>> cheapestMergeBelow(
+    const std::vector<Piece>& pieces, double bar, const Context& context, double touchTolerance,
+    std::uint64_t& measured) {
+  std::optional<std::pair<std::pair<std::size_t, std::size_t>, Cell>> best;
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    for (std::size_t j = i + 1; j < pieces.size(); ++j) {
+      const Cell& a = pieces[i].cell;
+      const Cell& b = pieces[j].cell;
+      if (std::max(a.concavity, b.concavity) >= bar || !boxesTouch(a, b, touchTolerance)) continue;
+      std::optional<Cell> merged = mergedCell(a, b, context.snap);
+      if (!merged) continue;
+      MergedConcavity measurement(*merged, a, b, context, measured++);
+      if (!measurement.measure(*merged, context.solid, bar)) continue;
+      bar = merged->concavity;
+      best = std::pair{std::pair{i, j}, std::move(*merged)};
+    }
+  }
+  return best;
+}
+
+// Lowers the largest concavity left by merging with two moves on the worst piece: re-cut it and a
+// neighbour with one plane (the plane may cross their cells, so the border between them leaves
+// the cuts of the split; the nearest neighbours are tried first and the first that helps is
+// taken), or else cut it in two and merge the cheapest touching pair instead. A move is kept when
+// every piece it makes, measured again on more samples, is below the worst piece's concavity.
+// Repeated until no move helps the worst piece or `rounds` moves are made; returns how many.
+std::size_t refinePieces(std::vector<Piece>& pieces, std::size_t rounds, const Context& context,
+                         double touchTolerance, std::uint64_t& measured) {
+  const auto byConcavity = [](const Piece& a, const Piece& b) {
+    return a.cell.concavity < b.cell.concavity;
+  };
+  std::size_t moves = 0;
+  for (; moves < rounds; ++moves) {
+    const auto worstIt = std::max_element(pieces.begin(), pieces.end(), byConcavity);
+    const auto worst = static_cast<std::size_t>(worstIt - pieces.begin());
+    const Piece& piece = *worstIt;
+    const double bar = piece.cell.concavity;
+    // Move 1: re-cut with a neighbour.
+    bool moved = false;
+    for (const std::size_t q : nearestNeighbours(pieces, worst, touchTolerance)) {
+      const std::vector<Cell> region = joinedRegion(piece, pieces[q]);
+      const auto found = bestRegionCut(region, joinedVertices(piece, pieces[q]),
+                                       piece.cell.worstPoint, bar, context, measured);
+      if (!found) continue;
+      auto made = cutPieces(region, found->first, bar, context, measured);
+      if (!made) break;
+      pieces[worst] = std::move(made->first);
+      pieces[q] = std::move(made->second);
+      moved = true;
+      break;
+    }
+    if (moved) continue;
+    // Move 2: cut the worst piece in two, merge the cheapest touching pair.
+    const auto own = bestRegionCut(piece.region, piece.cell.hull.mesh.vertices,
+                                   piece.cell.worstPoint, bar, context, measured);
+    if (!own) break;
+    auto made = cutPieces(piece.region, own->first, bar, context, measured);
+    if (!made) break;
+    std::vector<Piece> next;
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      if (i != worst) next.push_back(pieces[i]);
+    }
+    next.push_back(std::move(made->first));
+    next.push_back(std::move(made->second));
+    auto merge = cheapestMergeBelow(next, bar, context, touchTolerance, measured);
+    if (!merge) break;
+    const auto [i, j] = merge->first;
+    Piece joined{std::move(merge->second), joinedRegion(next[i], next[j])};
+    keepHull(joined.cell, context.snap);
+    next[i] = std::move(joined);
+    next.erase(next.begin() + static_cast<std::ptrdiff_t>(j));
+    pieces = std::move(next);
+  }
+  return moves;
+}
 
 // Largest distance from the points to the convex piece (0 inside), exact.
 double largestDistanceToConvex(const std::vector<Vec3>& points, const ConvexHull& piece) {
@@ -1085,8 +1341,12 @@ Decomposition decomposeSharing(const TriangleMesh& mesh, const DecompositionOpti
   }
   for (Cell& cell : open) leaves.push_back(std::move(cell));
   const std::size_t leafCount = leaves.size();
-  leaves = MergeSearch(leaves, context, 1e-6 * stats.diagonal, measured)
-               .run(options.maxPieces, concavityBudget);
+  std::vector<Piece> merged = MergeSearch(leaves, context, 1e-6 * stats.diagonal, measured)
+                                  .run(options.maxPieces, concavityBudget);
+  stats.refinements =
+      refinePieces(merged, options.refineRounds, context, 1e-6 * stats.diagonal, measured);
+  leaves.clear();
+  for (Piece& piece : merged) leaves.push_back(std::move(piece.cell));
   stats.merges = leafCount - leaves.size();
   const bool limited = std::any_of(leaves.begin(), leaves.end(),
                                    [&](const Cell& c) { return c.concavity > concavityBudget; });

@@ -26,6 +26,10 @@ struct DecompositionOptions {
   // Random samples of the bridge between two pieces when their merge is priced (the merged hull's
   // triangles not spanned by one piece's vertices; plus their vertices and edge midpoints).
   std::size_t bridgeSamples = 2000;
+  // At most this many moves after merging that re-cut the worst piece (with a neighbour, or alone
+  // and merge another pair instead); 0 (the default) keeps the merged pieces as they are. 10 lowers
+  // the 14 robot links' mean distance from 3.27% to 3.17% of the diagonal for ~1.5x the time.
+  std::size_t refineRounds = 0;
   std::uint64_t seed = 1;
 };
 
@@ -51,7 +55,8 @@ struct DecompositionStats {
   double diagonal = 0.0;            // bounding-box diagonal of the input
   double estimatedError = 0.0;      // step 1 bound + largest concavity + largest step-3 growth
   std::size_t splits = 0, merges = 0;
-  std::string stopReason;  // "within epsilon" or "piece limit reached"
+  std::size_t refinements = 0;  // re-cut moves kept after merging
+  std::string stopReason;       // "within epsilon" or "piece limit reached"
   double seconds = 0.0;
 };
 
