@@ -89,6 +89,25 @@ TEST(DecomposeCli, PieceLimitAndAbsoluteEpsilonAreApplied) {
   EXPECT_EQ(j["max_pieces"].get<int>(), 2);
 }
 
+// --refine re-cuts the worst piece after merging; the JSON counts the kept moves and the
+// estimate it reports is not above the one without re-cuts.
+TEST(DecomposeCli, RefineReCutsAndReportsTheMoves) {
+  ScratchDir dir;
+  const auto run = [&](const std::string& extra) {
+    const CliResult r = runCli(dir, "decompose " + quotedMesh("kr5-wrist.stl") + " -o '" +
+                                        dir.file("w.obj") + "' --json -q --samples 2000" + extra);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    return nlohmann::json::parse(r.out);
+  };
+  const nlohmann::json plain = run("");
+  const nlohmann::json refined = run(" --refine 10");
+  EXPECT_EQ(plain["refinements"].get<int>(), 0);
+  EXPECT_GT(refined["refinements"].get<int>(), 0);
+  EXPECT_LE(refined["refinements"].get<int>(), 10);
+  EXPECT_LT(refined["estimated_error"].get<double>(), plain["estimated_error"].get<double>());
+  EXPECT_EQ(refined["distances"]["uncovered_samples"].get<int>(), 0);
+}
+
 // Every class of bad input: exit code 2 and one line on stderr naming the culprit.
 TEST(DecomposeCli, BadInputIsOneLineAndExitCode2) {
   ScratchDir dir;
@@ -108,6 +127,8 @@ TEST(DecomposeCli, BadInputIsOneLineAndExitCode2) {
       {"decompose " + quotedMesh("cube.off") + out + " --epsilon abc", "--epsilon"},
       {"decompose " + quotedMesh("cube.off") + out + " --epsilon -1%", "--epsilon"},
       {"decompose " + quotedMesh("cube.off") + out + " --max-pieces 0", "--max-pieces"},
+      {"decompose " + quotedMesh("cube.off") + out + " --refine 1001", "--refine"},
+      {"decompose " + quotedMesh("cube.off") + out + " --refine -1", "--refine"},
       {"decompose " + quotedMesh("cube.off") + " -o '" + dir.file("no/such/dir/out.obj") + "'",
        "out.obj"},
       {"decompose " + quotedMesh("cube.off"), "--output"},
