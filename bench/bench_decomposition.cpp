@@ -7,7 +7,9 @@
 // also decomposed with DecompositionOptions::seed 2..N (the random concavity samples), and counters
 // give the approximation->original distance over the N seeds (mean, smallest, largest, and how
 // many seeds are above the reference's best, 3.7%): single links move by up to ~1% of the
-// diagonal with the seed, so compare changes on that spread.
+// diagonal with the seed, so compare changes on that spread. With --refine=N (a whole number;
+// default 0) every decomposition makes up to N re-cuts after merging
+// (DecompositionOptions::refineRounds).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -26,6 +28,10 @@ namespace {
 namespace fs = std::filesystem;
 
 unsigned seedCount = 1;  // --seeds=N
+
+// The options of every decomposition: the defaults (3% of the diagonal, at most 11 pieces) and
+// --refine=N.
+kaboum::DecompositionOptions benchOptions;
 
 struct Link {
   std::string robot, name;
@@ -57,7 +63,7 @@ const std::vector<Link>& links() {
 // One link: time per decomposition; counters give the result's Table 4.3 columns (distances in %
 // of the diagonal, measured once outside the timed loop).
 void BM_DecomposeLink(benchmark::State& state, const Link* link) {
-  const kaboum::DecompositionOptions options;  // 3% of the diagonal, at most 11 pieces
+  const kaboum::DecompositionOptions& options = benchOptions;
   kaboum::Decomposition result;
   for (auto _ : state) {
     result = kaboum::decomposeBounding(link->mesh, options);
@@ -99,6 +105,7 @@ void BM_DecomposeLink(benchmark::State& state, const Link* link) {
   state.counters["vertices_max"] = static_cast<double>(maxVertices);
   state.counters["vertices_mean"] =
       static_cast<double>(result.stats.totalVertices) / static_cast<double>(result.pieces.size());
+  state.counters["refinements"] = static_cast<double>(result.stats.refinements);
   state.counters["estimated_error_pct"] = result.stats.estimatedError * percent;
   state.counters["orig_to_approx_max_pct"] = quality.originalToApproximation.max * percent;
   state.counters["orig_to_approx_mean_pct"] = quality.originalToApproximation.mean * percent;
@@ -119,7 +126,7 @@ void BM_DecomposeRobot(benchmark::State& state, const std::string& robot) {
   }
   std::size_t pieces = 0;
   for (auto _ : state) {
-    const auto results = kaboum::decomposeBoundingEach(meshes, {}, 2);
+    const auto results = kaboum::decomposeBoundingEach(meshes, benchOptions, 2);
     pieces = 0;
     for (const auto& r : results) pieces += r.pieces.size();
   }
@@ -145,20 +152,31 @@ const bool registered = [] {
 
 }  // namespace
 
+// Parses the value of --NAME=VALUE, a whole number of at least `least`; prints a one-line error
+// and returns false otherwise.
+template <typename Number>
+bool parseWholeNumber(std::string_view name, std::string_view value, Number least, Number& number) {
+  const char* end = value.data() + value.size();
+  const auto [stop, error] = std::from_chars(value.data(), end, number);
+  if (error == std::errc{} && stop == end && number >= least) return true;
+  std::fprintf(stderr,
+               "bench_decomposition: --%.*s: expected a whole number of at least %llu, got "
+               "'%.*s'\n",
+               static_cast<int>(name.size()), name.data(), static_cast<unsigned long long>(least),
+               static_cast<int>(value.size()), value.data());
+  return false;
+}
+
 int main(int argc, char** argv) {
-  // Takes --seeds=N off the command line before Google Benchmark reads the rest.
+  // Takes --seeds=N and --refine=N off the command line before Google Benchmark reads the rest.
   int kept = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string_view argument = argv[i];
     if (argument.starts_with("--seeds=")) {
-      const std::string_view value = argument.substr(8);
-      const char* end = value.data() + value.size();
-      const auto [stop, error] = std::from_chars(value.data(), end, seedCount);
-      if (error != std::errc{} || stop != end || seedCount == 0) {
-        std::fprintf(stderr,
-                     "bench_decomposition: --seeds: expected a whole number of at least 1, got "
-                     "'%.*s'\n",
-                     static_cast<int>(value.size()), value.data());
+      if (!parseWholeNumber("seeds", argument.substr(8), 1u, seedCount)) return 2;
+    } else if (argument.starts_with("--refine=")) {
+      if (!parseWholeNumber("refine", argument.substr(9), std::size_t{0},
+                            benchOptions.refineRounds)) {
         return 2;
       }
     } else {
