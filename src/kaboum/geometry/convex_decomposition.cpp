@@ -513,24 +513,17 @@ std::vector<Vec3> pocketNormals(const Cell& cell, const Solid& solid) {
   return normals;
 }
 
-// The split of `cell` whose children's larger concavity is smallest, among the kShortlist
-// candidate cuts with the smallest total hull volume (the hull volume beyond the solid's is what
-// concavity grows with, and it is cheap to compare) and the cuts through the worst concavity
-// sample; nothing when no candidate cuts it in two. The children come with their concavity
-// measured and their polygons clipped. Candidates: axis-parallel and principal-axis planes at
-// evenly spaced positions and through the worst sample, and the pocket planes through it. They are
-// ranked and measured on quickHull's hulls; only the chosen children get qhull's (keepHull).
-std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& context,
-                                               std::uint64_t& measured) {
-  struct Candidate {
-    Cell below, above;
-    bool throughWorst;  // the cut passes through the cell's worst concavity sample
-  };
-  struct Cut {
-    Vec3 normal;
-    double position;
-    bool throughWorst;
-  };
+// A candidate cut plane (n.x <= position below) and whether it passes through the worst sample.
+struct Cut {
+  Vec3 normal;
+  double position;
+  bool throughWorst;
+};
+
+// The candidate cuts of a piece with the hull vertices and worst sample w of `cell`:
+// axis-parallel and principal-axis planes at evenly spaced positions and through w (unless w is
+// within 2% of the ends), and the pocket planes through w.
+std::vector<Cut> candidateCuts(const Cell& cell, const Solid& solid) {
   std::vector<Cut> cuts;
   for (const Vec3& axis : cutAxes(cell)) {
     double lo = std::numeric_limits<double>::infinity();
@@ -547,20 +540,26 @@ std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& 
       cuts.push_back({axis, worst, true});
     }
   }
-  for (const Vec3& normal : pocketNormals(cell, context.solid)) {
+  for (const Vec3& normal : pocketNormals(cell, solid)) {
     cuts.push_back({normal, normal.dot(cell.worstPoint), true});
   }
-  // The children of every cut (independent tasks, shared with idle workers); a cut that leaves
-  // one side without volume is no candidate.
-  std::vector<std::optional<Candidate>> children(cuts.size());
-  runTasks(context.sharing, cuts.size(), [&](std::size_t k) {
-    const Cut& cut = cuts[k];
-    auto below = childCell(cell, HullPlane{cut.normal, cut.position}, context);
-    if (!below) return;
-    auto above = childCell(cell, HullPlane{-cut.normal, -cut.position}, context);
-    if (!above) return;
-    children[k] = Candidate{std::move(*below), std::move(*above), cut.throughWorst};
-  });
+  return cuts;
+}
+
+// A cut with the candidate pieces on its two sides.
+struct Candidate {
+  HullPlane cut;
+  Cell below, above;
+  bool throughWorst;
+};
+
+// The candidate whose larger child concavity is smallest and below `bar`, among the kShortlist
+// with the smallest total hull volume (the hull volume beyond the solid's is what concavity grows
+// with, and it is cheap to compare) and the cuts through the worst sample; nothing when none is
+// below `bar`. Its children come with their concavity measured (salts from `measured`).
+std::optional<Candidate> chooseCandidate(std::vector<std::optional<Candidate>>& children,
+                                         double bar, const Context& context,
+                                         std::uint64_t& measured) {
   std::vector<Candidate> candidates;
   for (auto& c : children) {
     if (c) candidates.push_back(std::move(*c));
@@ -590,14 +589,15 @@ std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& 
     return volume(candidates[a.index]) < volume(candidates[b.index]);
   });
   std::size_t best = candidates.size();
-  double bestConcavity = std::numeric_limits<double>::infinity();
+  double bestConcavity = bar;
   for (const ToMeasure& m : toMeasure) {
     Candidate& c = candidates[m.index];
     // A candidate loses as soon as one child reaches the best concavity so far (passes it, for a
-    // candidate earlier in candidate order, which wins a tie).
+    // candidate earlier in candidate order than the best, which wins a tie).
     const double stopAt =
-        m.index < best ? std::nextafter(bestConcavity, std::numeric_limits<double>::infinity())
-                       : bestConcavity;
+        best < candidates.size() && m.index < best
+            ? std::nextafter(bestConcavity, std::numeric_limits<double>::infinity())
+            : bestConcavity;
     if (!measureConcavity(c.below, context, m.salt, stopAt) ||
         !measureConcavity(c.above, context, m.salt + 1, stopAt)) {
       continue;
@@ -605,12 +605,37 @@ std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& 
     bestConcavity = std::max(c.below.concavity, c.above.concavity);
     best = m.index;
   }
-  Candidate& chosen = candidates[best];
-  keepHull(chosen.below, context.snap);
-  keepHull(chosen.above, context.snap);
-  clipPolygons(cell, chosen.below.walls.back(), context.tolerance, chosen.below);
-  clipPolygons(cell, chosen.above.walls.back(), context.tolerance, chosen.above);
-  return std::pair{std::move(chosen.below), std::move(chosen.above)};
+  if (best == candidates.size()) return std::nullopt;
+  return std::move(candidates[best]);
+}
+
+// The split of `cell` chosen by chooseCandidate among its candidate cuts; nothing when no
+// candidate cuts it in two. The children come with their concavity measured and their polygons
+// clipped. They are ranked and measured on quickHull's hulls; only the chosen children get
+// qhull's (keepHull).
+std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& context,
+                                               std::uint64_t& measured) {
+  const std::vector<Cut> cuts = candidateCuts(cell, context.solid);
+  // The children of every cut (independent tasks, shared with idle workers); a cut that leaves
+  // one side without volume is no candidate.
+  std::vector<std::optional<Candidate>> children(cuts.size());
+  runTasks(context.sharing, cuts.size(), [&](std::size_t k) {
+    const HullPlane cut{cuts[k].normal, cuts[k].position};
+    auto below = childCell(cell, cut, context);
+    if (!below) return;
+    auto above = childCell(cell, HullPlane{-cut.normal, -cut.offset}, context);
+    if (!above) return;
+    children[k] = Candidate{cut, std::move(*below), std::move(*above), cuts[k].throughWorst};
+  });
+  std::optional<Candidate> chosen =
+      chooseCandidate(children, std::numeric_limits<double>::infinity(), context, measured);
+  if (!chosen) return std::nullopt;
+  keepHull(chosen->below, context.snap);
+  keepHull(chosen->above, context.snap);
+  clipPolygons(cell, chosen->cut, context.tolerance, chosen->below);
+  clipPolygons(cell, HullPlane{-chosen->cut.normal, -chosen->cut.offset}, context.tolerance,
+               chosen->above);
+  return std::pair{std::move(chosen->below), std::move(chosen->above)};
 }
 
 // The hull of two pieces together (pieces' vertices only: cells are not needed after splitting).
@@ -909,9 +934,9 @@ std::optional<Cell> regionHull(const std::vector<Cell>& region, const Context& c
   return hull;
 }
 
-// The cut of a region whose two parts' larger concavity is smallest and below `bar`, among the
-// cuts of bestSplit for the hull `vertices` with the worst sample `worstPoint`; nothing when none
-// is below `bar`.
+// The cut of a region chosen by chooseCandidate among the candidate cuts of the hull `vertices`
+// with the worst sample `worstPoint`, with its parts' larger concavity; nothing when none is below
+// `bar`.
 std::optional<std::pair<HullPlane, double>> bestRegionCut(const std::vector<Cell>& region,
                                                           const std::vector<Vec3>& vertices,
                                                           const Vec3& worstPoint, double bar,
@@ -920,45 +945,20 @@ std::optional<std::pair<HullPlane, double>> bestRegionCut(const std::vector<Cell
   Cell shape;
   shape.hull.mesh.vertices = vertices;
   shape.worstPoint = worstPoint;
-  std::vector<HullPlane> cuts;
-  for (const Vec3& axis : cutAxes(shape)) {
-    double lo = std::numeric_limits<double>::infinity();
-    double hi = -lo;
-    for (const Vec3& v : vertices) {
-      lo = std::min(lo, axis.dot(v));
-      hi = std::max(hi, axis.dot(v));
-    }
-    for (int k = 1; k <= kCutsPerAxis; ++k) {
-      cuts.push_back({axis, lo + (hi - lo) * k / (kCutsPerAxis + 1)});
-    }
-    cuts.push_back({axis, axis.dot(worstPoint)});
-  }
-  for (const Vec3& normal : pocketNormals(shape, context.solid)) {
-    cuts.push_back({normal, normal.dot(worstPoint)});
-  }
-  std::vector<std::optional<std::pair<Cell, Cell>>> children(cuts.size());
+  const std::vector<Cut> cuts = candidateCuts(shape, context.solid);
+  std::vector<std::optional<Candidate>> children(cuts.size());
   runTasks(context.sharing, cuts.size(), [&](std::size_t k) {
-    auto below = regionHull(clipRegion(region, cuts[k], context, false), context);
+    const HullPlane cut{cuts[k].normal, cuts[k].position};
+    auto below = regionHull(clipRegion(region, cut, context, false), context);
     if (!below) return;
-    auto above = regionHull(
-        clipRegion(region, HullPlane{-cuts[k].normal, -cuts[k].offset}, context, false), context);
+    auto above = regionHull(clipRegion(region, HullPlane{-cut.normal, -cut.offset}, context, false),
+                            context);
     if (!above) return;
-    children[k] = std::pair{std::move(*below), std::move(*above)};
+    children[k] = Candidate{cut, std::move(*below), std::move(*above), cuts[k].throughWorst};
   });
-  std::optional<std::pair<HullPlane, double>> best;
-  for (std::size_t k = 0; k < cuts.size(); ++k) {
-    if (!children[k]) continue;
-    auto& [below, above] = *children[k];
-    const std::uint64_t salt = measured;
-    measured += 2;
-    if (!measureConcavity(below, context, salt, bar) ||
-        !measureConcavity(above, context, salt + 1, bar)) {
-      continue;
-    }
-    bar = std::max(below.concavity, above.concavity);
-    best = std::pair{cuts[k], bar};
-  }
-  return best;
+  const std::optional<Candidate> chosen = chooseCandidate(children, bar, context, measured);
+  if (!chosen) return std::nullopt;
+  return std::pair{chosen->cut, std::max(chosen->below.concavity, chosen->above.concavity)};
 }
 
 // The two pieces `cut` makes of a region, measured again on more samples; nothing unless both are
