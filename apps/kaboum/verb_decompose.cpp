@@ -160,7 +160,7 @@ VerbRunner setupDecompose(CLI::App& command) {
       ->check(CLI::Range(std::size_t{1}, std::size_t{100000}));
   command
       .add_option("--refine", args->refineRounds,
-                  "After merging, up to N re-cuts of the worst piece (tighter, about 1.5x the "
+                  "After merging, up to N re-cuts of the worst piece (tighter, 1.3-1.6x the "
                   "time; docs/decomposition.md)")
       ->capture_default_str()
       ->check(CLI::Range(std::size_t{0}, std::size_t{1000}));
