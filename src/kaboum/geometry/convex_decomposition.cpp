@@ -513,10 +513,14 @@ std::vector<Vec3> pocketNormals(const Cell& cell, const Solid& solid) {
   return normals;
 }
 
-// A candidate cut plane (n.x <= position below) and whether it passes through the worst sample.
+// The plane of `plane` with the other side as below.
+HullPlane otherSide(const HullPlane& plane) {
+  return {-plane.normal, -plane.offset};
+}
+
+// A candidate cut (its below side n.x <= d) and whether it passes through the worst sample.
 struct Cut {
-  Vec3 normal;
-  double position;
+  HullPlane plane;
   bool throughWorst;
 };
 
@@ -533,33 +537,43 @@ std::vector<Cut> candidateCuts(const Cell& cell, const Solid& solid) {
       hi = std::max(hi, axis.dot(v));
     }
     for (int k = 1; k <= kCutsPerAxis; ++k) {
-      cuts.push_back({axis, lo + (hi - lo) * k / (kCutsPerAxis + 1), false});
+      cuts.push_back({{axis, lo + (hi - lo) * k / (kCutsPerAxis + 1)}, false});
     }
     const double worst = axis.dot(cell.worstPoint);
     if (worst > lo + 0.02 * (hi - lo) && worst < hi - 0.02 * (hi - lo)) {
-      cuts.push_back({axis, worst, true});
+      cuts.push_back({{axis, worst}, true});
     }
   }
   for (const Vec3& normal : pocketNormals(cell, solid)) {
-    cuts.push_back({normal, normal.dot(cell.worstPoint), true});
+    cuts.push_back({{normal, normal.dot(cell.worstPoint)}, true});
   }
   return cuts;
 }
 
 // A cut with the candidate pieces on its two sides.
 struct Candidate {
-  HullPlane cut;
+  Cut cut;
   Cell below, above;
-  bool throughWorst;
 };
 
-// The candidate whose larger child concavity is smallest and below `bar`, among the kShortlist
-// with the smallest total hull volume (the hull volume beyond the solid's is what concavity grows
-// with, and it is cheap to compare) and the cuts through the worst sample; nothing when none is
-// below `bar`. Its children come with their concavity measured (salts from `measured`).
-std::optional<Candidate> chooseCandidate(std::vector<std::optional<Candidate>>& children,
-                                         double bar, const Context& context,
-                                         std::uint64_t& measured) {
+// The cut whose two pieces' larger concavity is smallest and below `bar`, among the kShortlist
+// cuts with the smallest total hull volume (the hull volume beyond the solid's is what concavity
+// grows with, and it is cheap to compare) and the cuts through the worst sample; nothing when none
+// is below `bar`. `below(plane)` gives the candidate piece on the side n.x <= d of a plane, or
+// nothing when that side has none (the cut is no candidate then); the pieces of all cuts are
+// independent tasks, shared with idle workers. The chosen pieces come with their concavity
+// measured (salts from `measured`).
+template <typename Below>
+std::optional<Candidate> chooseCandidate(const std::vector<Cut>& cuts, Below below, double bar,
+                                         const Context& context, std::uint64_t& measured) {
+  std::vector<std::optional<Candidate>> children(cuts.size());
+  runTasks(context.sharing, cuts.size(), [&](std::size_t k) {
+    auto under = below(cuts[k].plane);
+    if (!under) return;
+    auto over = below(otherSide(cuts[k].plane));
+    if (!over) return;
+    children[k] = Candidate{cuts[k], std::move(*under), std::move(*over)};
+  });
   std::vector<Candidate> candidates;
   for (auto& c : children) {
     if (c) candidates.push_back(std::move(*c));
@@ -581,7 +595,7 @@ std::optional<Candidate> chooseCandidate(std::vector<std::optional<Candidate>>& 
   };
   std::vector<ToMeasure> toMeasure;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
-    if (i >= shortlist && !candidates[i].throughWorst) continue;
+    if (i >= shortlist && !candidates[i].cut.throughWorst) continue;
     toMeasure.push_back({i, measured});
     measured += 2;
   }
@@ -610,31 +624,20 @@ std::optional<Candidate> chooseCandidate(std::vector<std::optional<Candidate>>& 
 }
 
 // The split of `cell` chosen by chooseCandidate among its candidate cuts; nothing when no
-// candidate cuts it in two. The children come with their concavity measured and their polygons
-// clipped. They are ranked and measured on quickHull's hulls; only the chosen children get
-// qhull's (keepHull).
+// candidate cuts it in two (a side without volume). The children come with their concavity
+// measured and their polygons clipped. They are ranked and measured on quickHull's hulls; only
+// the chosen children get qhull's (keepHull).
 std::optional<std::pair<Cell, Cell>> bestSplit(const Cell& cell, const Context& context,
                                                std::uint64_t& measured) {
-  const std::vector<Cut> cuts = candidateCuts(cell, context.solid);
-  // The children of every cut (independent tasks, shared with idle workers); a cut that leaves
-  // one side without volume is no candidate.
-  std::vector<std::optional<Candidate>> children(cuts.size());
-  runTasks(context.sharing, cuts.size(), [&](std::size_t k) {
-    const HullPlane cut{cuts[k].normal, cuts[k].position};
-    auto below = childCell(cell, cut, context);
-    if (!below) return;
-    auto above = childCell(cell, HullPlane{-cut.normal, -cut.offset}, context);
-    if (!above) return;
-    children[k] = Candidate{cut, std::move(*below), std::move(*above), cuts[k].throughWorst};
-  });
-  std::optional<Candidate> chosen =
-      chooseCandidate(children, std::numeric_limits<double>::infinity(), context, measured);
+  std::optional<Candidate> chosen = chooseCandidate(
+      candidateCuts(cell, context.solid),
+      [&](const HullPlane& plane) { return childCell(cell, plane, context); },
+      std::numeric_limits<double>::infinity(), context, measured);
   if (!chosen) return std::nullopt;
   keepHull(chosen->below, context.snap);
   keepHull(chosen->above, context.snap);
-  clipPolygons(cell, chosen->cut, context.tolerance, chosen->below);
-  clipPolygons(cell, HullPlane{-chosen->cut.normal, -chosen->cut.offset}, context.tolerance,
-               chosen->above);
+  clipPolygons(cell, chosen->cut.plane, context.tolerance, chosen->below);
+  clipPolygons(cell, otherSide(chosen->cut.plane), context.tolerance, chosen->above);
   return std::pair{std::move(chosen->below), std::move(chosen->above)};
 }
 
@@ -706,7 +709,14 @@ class MergeSearch {
     std::vector<Piece> pieces;
     for (const std::uint32_t id : alive_) {
       Piece piece;
-      for (const std::uint32_t leaf : nodes_[id].leaves) piece.region.push_back(nodes_[leaf].cell);
+      for (const std::uint32_t leaf : nodes_[id].leaves) {
+        // The leaves of a merged piece are needed only in its region; a leaf piece is its own.
+        if (leaf == id) {
+          piece.region.push_back(nodes_[leaf].cell);
+        } else {
+          piece.region.push_back(std::move(nodes_[leaf].cell));
+        }
+      }
       piece.cell = std::move(nodes_[id].cell);
       pieces.push_back(std::move(piece));
     }
@@ -945,20 +955,14 @@ std::optional<std::pair<HullPlane, double>> bestRegionCut(const std::vector<Cell
   Cell shape;
   shape.hull.mesh.vertices = vertices;
   shape.worstPoint = worstPoint;
-  const std::vector<Cut> cuts = candidateCuts(shape, context.solid);
-  std::vector<std::optional<Candidate>> children(cuts.size());
-  runTasks(context.sharing, cuts.size(), [&](std::size_t k) {
-    const HullPlane cut{cuts[k].normal, cuts[k].position};
-    auto below = regionHull(clipRegion(region, cut, context, false), context);
-    if (!below) return;
-    auto above = regionHull(clipRegion(region, HullPlane{-cut.normal, -cut.offset}, context, false),
-                            context);
-    if (!above) return;
-    children[k] = Candidate{cut, std::move(*below), std::move(*above), cuts[k].throughWorst};
-  });
-  const std::optional<Candidate> chosen = chooseCandidate(children, bar, context, measured);
+  const std::optional<Candidate> chosen = chooseCandidate(
+      candidateCuts(shape, context.solid),
+      [&](const HullPlane& plane) {
+        return regionHull(clipRegion(region, plane, context, false), context);
+      },
+      bar, context, measured);
   if (!chosen) return std::nullopt;
-  return std::pair{chosen->cut, std::max(chosen->below.concavity, chosen->above.concavity)};
+  return std::pair{chosen->cut.plane, std::max(chosen->below.concavity, chosen->above.concavity)};
 }
 
 // The two pieces `cut` makes of a region, measured again on more samples; nothing unless both are
@@ -968,7 +972,7 @@ std::optional<std::pair<Piece, Piece>> cutPieces(const std::vector<Cell>& region
                                                  const Context& context, std::uint64_t& measured) {
   Piece below, above;
   below.region = clipRegion(region, cut, context, true);
-  above.region = clipRegion(region, HullPlane{-cut.normal, -cut.offset}, context, true);
+  above.region = clipRegion(region, otherSide(cut), context, true);
   auto belowHull = regionHull(below.region, context);
   auto aboveHull = regionHull(above.region, context);
   if (!belowHull || !aboveHull) return std::nullopt;
@@ -1047,10 +1051,11 @@ std::optional<std::pair<std::pair<std::size_t, std::size_t>, Cell>> cheapestMerg
 
 // Lowers the largest concavity left by merging with two moves on the worst piece: re-cut it and a
 // neighbour with one plane (the plane may cross their cells, so the border between them leaves
-// the cuts of the split; the nearest neighbours are tried first and the first that helps is
-// taken), or else cut it in two and merge the cheapest touching pair instead. A move is kept when
-// every piece it makes, measured again on more samples, is below the worst piece's concavity.
-// Repeated until no move helps the worst piece or `rounds` moves are made; returns how many.
+// the cuts of the split; the nearest neighbours are tried in turn, up to the first whose best
+// cut gets below the bar), or else cut it in two and merge the cheapest touching pair instead. A
+// move is kept when every piece it makes, measured again on more samples, is below the worst
+// piece's concavity. Repeated until no move helps the worst piece or `rounds` moves are made;
+// returns how many.
 std::size_t refinePieces(std::vector<Piece>& pieces, std::size_t rounds, const Context& context,
                          double touchTolerance, std::uint64_t& measured) {
   const auto byConcavity = [](const Piece& a, const Piece& b) {
