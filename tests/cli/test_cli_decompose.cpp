@@ -90,7 +90,7 @@ TEST(DecomposeCli, PieceLimitAndAbsoluteEpsilonAreApplied) {
 }
 
 // --refine re-cuts the worst piece after merging; the JSON counts the kept moves and the
-// estimate it reports is not above the one without re-cuts.
+// estimate it reports is below the one without re-cuts.
 TEST(DecomposeCli, RefineReCutsAndReportsTheMoves) {
   ScratchDir dir;
   const auto run = [&](const std::string& extra) {
