@@ -8,42 +8,51 @@ bool sameSign(double a, double b) {
   return ((a > 0.0) & (b > 0.0)) | ((a < 0.0) & (b < 0.0));
 }
 
-void vertex(const Vec3* w, int i, SimplexFace& out) {
-  out.kept = 1U << i;
-  out.lambda[i] = 1.0;
-  out.point = w[i];
-  out.squaredNorm = out.point.squaredNorm();
+// Where the closest point of a face replaces `best`: always (kAlways: a fresh face, written even
+// when its norm is not a number) or only when it is closer; ties keep `best`.
+template <bool kAlways>
+bool replaces(double squaredNorm, const SimplexFace& best) {
+  return kAlways || squaredNorm < best.squaredNorm;
+}
+
+template <bool kAlways>
+void vertex(const Vec3* w, int i, SimplexFace& best) {
+  const double squaredNorm = w[i].squaredNorm();
+  if (!replaces<kAlways>(squaredNorm, best)) return;
+  best.kept = 1U << i;
+  best.lambda[i] = 1.0;
+  best.point = w[i];
+  best.squaredNorm = squaredNorm;
 }
 
 // Segment (S1D): the origin's projection parameter along the segment.
-void segment(const Vec3* w, int i0, int i1, SimplexFace& out) {
+template <bool kAlways>
+void segment(const Vec3* w, int i0, int i1, SimplexFace& best) {
   const Vec3 t = w[i1] - w[i0];
   const double tt = t.squaredNorm();
   const double along = -w[i0].dot(t);
-  if (!(along > 0.0)) return vertex(w, i0, out);  // also a zero-length segment
-  if (along >= tt) return vertex(w, i1, out);
+  if (!(along > 0.0)) return vertex<kAlways>(w, i0, best);  // also a zero-length segment
+  if (along >= tt) return vertex<kAlways>(w, i1, best);
   const double inverse = 1.0 / tt;
   const double mu = along * inverse;
-  out.kept = (1U << i0) | (1U << i1);
-  out.lambda[i0] = 1.0 - mu;
-  out.lambda[i1] = mu;
   // Exactly orthogonal to the segment: a rounding error along it would bias every later lower
   // bound w.v / |v| by about eps |w| / |v| when the distance is tiny.
-  const Vec3 point = w[i0] + mu * t;
-  out.point = point - t * (point.dot(t) * inverse);
-  out.squaredNorm = out.point.squaredNorm();
-}
-
-// Replaces `best` by the segment's solution when that is closer.
-void closerSegment(const Vec3* w, int i0, int i1, SimplexFace& best) {
-  SimplexFace candidate;
-  segment(w, i0, i1, candidate);
-  if (candidate.squaredNorm < best.squaredNorm) best = candidate;
+  const Vec3 onSegment = w[i0] + mu * t;
+  const Vec3 point = onSegment - t * (onSegment.dot(t) * inverse);
+  const double squaredNorm = point.squaredNorm();
+  if (!replaces<kAlways>(squaredNorm, best)) return;
+  best.kept = (1U << i0) | (1U << i1);
+  best.lambda[i0] = 1.0 - mu;
+  best.lambda[i1] = mu;
+  best.point = point;
+  best.squaredNorm = squaredNorm;
 }
 
 // Triangle (S2D): project the origin on the plane, then compare signed areas in the coordinate
-// plane where the triangle's projection is largest; edges facing the origin are tried otherwise.
-void triangle(const Vec3* w, int i0, int i1, int i2, SimplexFace& out) {
+// plane where the triangle's projection is largest; edges facing the origin are tried otherwise
+// (each only where closer than `best` so far).
+template <bool kAlways>
+void triangle(const Vec3* w, int i0, int i1, int i2, SimplexFace& best) {
   const Vec3& p0 = w[i0];
   const Vec3& p1 = w[i1];
   const Vec3& p2 = w[i2];
@@ -51,12 +60,11 @@ void triangle(const Vec3* w, int i0, int i1, int i2, SimplexFace& out) {
   const Vec3 e2 = p2 - p0;
   const Vec3 n = e1.cross(e2);
   const double nn = n.squaredNorm();
-  out.squaredNorm = std::numeric_limits<double>::infinity();
   // Flat (sine of the angle below 1e-12): only the edges are meaningful.
   if (!(nn > 1e-24 * e1.squaredNorm() * e2.squaredNorm())) {
-    closerSegment(w, i0, i1, out);
-    closerSegment(w, i0, i2, out);
-    closerSegment(w, i1, i2, out);
+    segment<false>(w, i0, i1, best);
+    segment<false>(w, i0, i2, best);
+    segment<false>(w, i1, i2, best);
     return;
   }
   const Vec3 projected = n * (p0.dot(n) / nn);
@@ -78,19 +86,21 @@ void triangle(const Vec3* w, int i0, int i1, int i2, SimplexFace& out) {
   const bool in1 = sameSign(total, c1);
   const bool in2 = sameSign(total, c2);
   if (in0 && in1 && in2) {
-    const double inverse = 1.0 / total;
-    out.kept = (1U << i0) | (1U << i1) | (1U << i2);
-    out.lambda[i0] = c0 * inverse;
-    out.lambda[i1] = c1 * inverse;
-    out.lambda[i2] = c2 * inverse;
     // The projection itself, exactly along the normal (see segment()).
-    out.point = projected;
-    out.squaredNorm = projected.squaredNorm();
+    const double squaredNorm = projected.squaredNorm();
+    if (!replaces<kAlways>(squaredNorm, best)) return;
+    const double inverse = 1.0 / total;
+    best.kept = (1U << i0) | (1U << i1) | (1U << i2);
+    best.lambda[i0] = c0 * inverse;
+    best.lambda[i1] = c1 * inverse;
+    best.lambda[i2] = c2 * inverse;
+    best.point = projected;
+    best.squaredNorm = squaredNorm;
     return;
   }
-  if (!in0) closerSegment(w, i1, i2, out);
-  if (!in1) closerSegment(w, i0, i2, out);
-  if (!in2) closerSegment(w, i0, i1, out);
+  if (!in0) segment<false>(w, i1, i2, best);
+  if (!in1) segment<false>(w, i0, i2, best);
+  if (!in2) segment<false>(w, i0, i1, best);
 }
 
 // Signed volumes of the tetrahedron (w0, w1, w2, w3) with the origin in place of each vertex;
@@ -118,16 +128,10 @@ bool tetrahedron(const Vec3* w, SimplexFace& out) {
     out.squaredNorm = 0.0;
     return true;
   }
-  out.squaredNorm = std::numeric_limits<double>::infinity();
-  const auto closerTriangle = [&](int i0, int i1, int i2) {
-    SimplexFace candidate;
-    triangle(w, i0, i1, i2, candidate);
-    if (candidate.squaredNorm < out.squaredNorm) out = candidate;
-  };
-  if (!in0) closerTriangle(1, 2, 3);
-  if (!in1) closerTriangle(0, 2, 3);
-  if (!in2) closerTriangle(0, 1, 3);
-  if (!in3) closerTriangle(0, 1, 2);
+  if (!in0) triangle<false>(w, 1, 2, 3, out);
+  if (!in1) triangle<false>(w, 0, 2, 3, out);
+  if (!in2) triangle<false>(w, 0, 1, 3, out);
+  if (!in3) triangle<false>(w, 0, 1, 2, out);
   return false;
 }
 
@@ -136,13 +140,13 @@ bool tetrahedron(const Vec3* w, SimplexFace& out) {
 bool closestFace(const Vec3* w, int size, SimplexFace& face) {
   switch (size) {
     case 1:
-      vertex(w, 0, face);
+      vertex<true>(w, 0, face);
       return false;
     case 2:
-      segment(w, 0, 1, face);
+      segment<true>(w, 0, 1, face);
       return false;
     case 3:
-      triangle(w, 0, 1, 2, face);
+      triangle<true>(w, 0, 1, 2, face);
       return false;
     default:
       return tetrahedron(w, face);
