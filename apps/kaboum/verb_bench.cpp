@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <ctime>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -52,28 +53,34 @@ double threadNanoseconds() {
   return 1e9 * static_cast<double>(now.tv_sec) + static_cast<double>(now.tv_nsec);
 }
 
-// Median over `runs` timed sweeps of `query(i)` for every pair i, in CPU ns per query.
+// One timed sweep of `query(i)` over every pair i, in CPU ns per query.
 template <class Query>
-double medianNanoseconds(std::size_t count, int runs, Query&& query) {
-  std::vector<double> perQuery;
+double sweepNanoseconds(std::size_t count, Query& query) {
   volatile std::size_t sink = 0;
-  for (int run = 0; run < runs; ++run) {
-    const double start = threadNanoseconds();
-    std::size_t hits = 0;
-    for (std::size_t i = 0; i < count; ++i) hits += query(i) ? 1 : 0;
-    const double stop = threadNanoseconds();
-    sink = sink + hits;
-    perQuery.push_back((stop - start) / static_cast<double>(count));
-  }
-  std::nth_element(perQuery.begin(), perQuery.begin() + runs / 2, perQuery.end());
-  return perQuery[static_cast<std::size_t>(runs / 2)];
+  const double start = threadNanoseconds();
+  std::size_t hits = 0;
+  for (std::size_t i = 0; i < count; ++i) hits += query(i) ? 1 : 0;
+  const double stop = threadNanoseconds();
+  sink = sink + hits;
+  return (stop - start) / static_cast<double>(count);
+}
+
+// The median of `values` (the upper one of an even count).
+double median(std::vector<double> values) {
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
 }
 
 // One library's answers on the workload: speed and wrong answers against the reference.
 struct MethodReport {
   std::string name;
   double booleanNs = 0.0;
+  double booleanRatio = 0.0;          // to kaboum: the median of the same-round ratios
+  std::vector<double> booleanRounds;  // ns per query in each round
   std::optional<double> distanceNs;
+  std::optional<double> distanceRatio;
+  std::vector<double> distanceRounds;
   int missedOverlaps = 0;      // "free" although the true distance is <= 0
   double deepestMissed = 0.0;  // largest penetration depth among them
   int falseAlarms = 0;         // "colliding" although the true distance is > 1e-6
@@ -81,14 +88,23 @@ struct MethodReport {
   double largestOverestimate = 0.0;
 };
 
+// A library checked against the reference, with its timed sweeps (each one pass over all pairs),
+// run later round by round together with the other libraries' (timeInterleaved).
+struct Method {
+  MethodReport report;
+  std::function<double()> booleanSweep;
+  std::function<double()> distanceSweep;  // empty when the library has no distance query
+};
+
 // Correctness tolerances of the counts (units of the unit-size workload).
 constexpr double kFalseAlarmDistance = 1e-6;
 constexpr double kOverestimateTolerance = 1e-9;
 
 template <class Intersects, class Distance>
-MethodReport measure(const std::string& name, const std::vector<double>& truth, int runs,
-                     Intersects&& intersects, Distance&& distance) {
-  MethodReport report;
+Method measure(const std::string& name, const std::vector<double>& truth, Intersects intersects,
+               Distance distance) {
+  Method method;
+  MethodReport& report = method.report;
   report.name = name;
   const std::size_t count = truth.size();
   for (std::size_t i = 0; i < count; ++i) {
@@ -99,8 +115,10 @@ MethodReport measure(const std::string& name, const std::vector<double>& truth, 
     }
     if (hit && truth[i] > kFalseAlarmDistance) ++report.falseAlarms;
   }
-  report.booleanNs = medianNanoseconds(count, runs, intersects);
-  if constexpr (!std::is_same_v<std::decay_t<Distance>, std::nullptr_t>) {
+  method.booleanSweep = [count, intersects]() mutable {
+    return sweepNanoseconds(count, intersects);
+  };
+  if constexpr (!std::is_same_v<Distance, std::nullptr_t>) {
     for (std::size_t i = 0; i < count; ++i) {
       const double excess = distance(i) - std::max(truth[i], 0.0);
       if (excess > kOverestimateTolerance) {
@@ -108,10 +126,56 @@ MethodReport measure(const std::string& name, const std::vector<double>& truth, 
         report.largestOverestimate = std::max(report.largestOverestimate, excess);
       }
     }
-    report.distanceNs =
-        medianNanoseconds(count, runs, [&](std::size_t i) { return distance(i) > 0.0; });
+    method.distanceSweep = [count, distance]() mutable {
+      auto positive = [&](std::size_t i) { return distance(i) > 0.0; };
+      return sweepNanoseconds(count, positive);
+    };
   }
-  return report;
+  return method;
+}
+
+// Times every method `runs` times, round by round (in each round a boolean sweep of every method,
+// then a distance sweep of every method), so that a drift of the machine's speed reaches all
+// libraries alike; reports medians, and ratios to the first method (kaboum) as medians of the
+// same-round ratios. Each timed sweep follows an untimed one of the same method, so that its
+// shapes are in the caches as in a run of that method alone (a cold sweep after the other
+// libraries' measured kaboum 2.5x slower: memory latency, not the query).
+std::vector<MethodReport> timeInterleaved(std::vector<Method>& methods, int runs) {
+  const std::size_t n = methods.size();
+  std::vector<std::vector<double>> booleanNs(n), distanceNs(n);
+  for (int run = 0; run < runs; ++run) {
+    for (std::size_t k = 0; k < n; ++k) {
+      methods[k].booleanSweep();
+      booleanNs[k].push_back(methods[k].booleanSweep());
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+      if (!methods[k].distanceSweep) continue;
+      methods[k].distanceSweep();
+      distanceNs[k].push_back(methods[k].distanceSweep());
+    }
+  }
+  const auto ratios = [runs](const std::vector<double>& theirs, const std::vector<double>& ours) {
+    std::vector<double> perRound;
+    for (int run = 0; run < runs; ++run) {
+      perRound.push_back(theirs[static_cast<std::size_t>(run)] /
+                         ours[static_cast<std::size_t>(run)]);
+    }
+    return median(perRound);
+  };
+  std::vector<MethodReport> reports;
+  for (std::size_t k = 0; k < n; ++k) {
+    MethodReport report = methods[k].report;
+    report.booleanRounds = booleanNs[k];
+    report.booleanNs = median(booleanNs[k]);
+    report.booleanRatio = ratios(booleanNs[k], booleanNs[0]);
+    if (!distanceNs[k].empty()) {
+      report.distanceRounds = distanceNs[k];
+      report.distanceNs = median(distanceNs[k]);
+      report.distanceRatio = ratios(distanceNs[k], distanceNs[0]);
+    }
+    reports.push_back(report);
+  }
+  return reports;
 }
 
 // libccd's view of a placed polytope: brute-force support over the local vertices.
@@ -191,10 +255,10 @@ std::vector<MethodReport> measureAll(const std::vector<PolytopePair>& pairs,
                                      const std::vector<double>& truth, int runs) {
   using collision::TransformedSupport;
   PairShapes s = buildShapes(pairs);
-  std::vector<MethodReport> reports;
+  std::vector<Method> methods;
 
-  reports.push_back(measure(
-      "kaboum", truth, runs,
+  methods.push_back(measure(
+      "kaboum", truth,
       [&](std::size_t i) {
         return collision::intersects(TransformedSupport(s.kaboumA[i], pairs[i].poseA),
                                      TransformedSupport(s.kaboumB[i], pairs[i].poseB));
@@ -206,8 +270,8 @@ std::vector<MethodReport> measureAll(const std::vector<PolytopePair>& pairs,
       }));
 
   const fcl::detail::GJKSolver_libccd<double> fclCcd;
-  reports.push_back(measure(
-      "fcl_libccd", truth, runs,
+  methods.push_back(measure(
+      "fcl_libccd", truth,
       [&](std::size_t i) {
         return fclCcd.shapeIntersect(*s.fclA[i], pairs[i].poseA, *s.fclB[i], pairs[i].poseB,
                                      nullptr);
@@ -219,8 +283,8 @@ std::vector<MethodReport> measureAll(const std::vector<PolytopePair>& pairs,
       }));
 
   const fcl::detail::GJKSolver_indep<double> fclIndep;
-  reports.push_back(measure(
-      "fcl_indep", truth, runs,
+  methods.push_back(measure(
+      "fcl_indep", truth,
       [&](std::size_t i) {
         return fclIndep.shapeIntersect(*s.fclA[i], pairs[i].poseA, *s.fclB[i], pairs[i].poseB,
                                        nullptr);
@@ -243,9 +307,8 @@ std::vector<MethodReport> measureAll(const std::vector<PolytopePair>& pairs,
     detector.getClosestPoints(input, output, nullptr);
     return output.m_hasResult ? output.m_distance : 0.0;
   };
-  reports.push_back(measure(
-      "bullet_gjk_pair_detector", truth, runs,
-      [&](std::size_t i) { return pairDetector(i) <= 0.0; },
+  methods.push_back(measure(
+      "bullet_gjk_pair_detector", truth, [&](std::size_t i) { return pairDetector(i) <= 0.0; },
       [&](std::size_t i) { return std::max(pairDetector(i), 0.0); }));
 
   auto gjkEpa2 = [&](std::size_t i) {
@@ -255,8 +318,8 @@ std::vector<MethodReport> measureAll(const std::vector<PolytopePair>& pairs,
                                   s.bulletPoseB[i], btVector3(1, 0, 0), result);
     return separated ? result.distance : 0.0;
   };
-  reports.push_back(measure(
-      "bullet_gjk_epa2", truth, runs, [&](std::size_t i) { return gjkEpa2(i) <= 0.0; },
+  methods.push_back(measure(
+      "bullet_gjk_epa2", truth, [&](std::size_t i) { return gjkEpa2(i) <= 0.0; },
       [&](std::size_t i) { return gjkEpa2(i); }));
 
   ccd_t ccd;
@@ -266,13 +329,13 @@ std::vector<MethodReport> measureAll(const std::vector<PolytopePair>& pairs,
   ccd.center1 = ccdCenter;
   ccd.center2 = ccdCenter;
   ccd.max_iterations = 500;
-  reports.push_back(measure(
-      "libccd_gjk", truth, runs,
+  methods.push_back(measure(
+      "libccd_gjk", truth,
       [&](std::size_t i) { return ccdGJKIntersect(&s.ccdA[i], &s.ccdB[i], &ccd) != 0; }, nullptr));
-  reports.push_back(measure(
-      "libccd_mpr", truth, runs,
+  methods.push_back(measure(
+      "libccd_mpr", truth,
       [&](std::size_t i) { return ccdMPRIntersect(&s.ccdA[i], &s.ccdB[i], &ccd) != 0; }, nullptr));
-  return reports;
+  return timeInterleaved(methods, runs);
 }
 
 // How kaboum's cold boolean query decides the pairs.
@@ -301,18 +364,19 @@ nlohmann::json runPairSection(const CollisionBenchOptions& options) {
     }
     if (!options.quiet) std::cerr << "pairs N=" << n << ": timing...\n";
     const std::vector<MethodReport> reports = measureAll(pairs, truth, options.runs);
-    const MethodReport& ours = reports.front();
 
     nlohmann::json methods;
     for (const MethodReport& r : reports) {
       nlohmann::json entry = {{"boolean_ns", r.booleanNs},
-                              {"boolean_ratio_to_kaboum", r.booleanNs / ours.booleanNs},
+                              {"boolean_ratio_to_kaboum", r.booleanRatio},
+                              {"boolean_rounds_ns", r.booleanRounds},
                               {"missed_overlaps", r.missedOverlaps},
                               {"deepest_missed_overlap", r.deepestMissed},
                               {"false_alarms", r.falseAlarms}};
       if (r.distanceNs) {
         entry["distance_ns"] = *r.distanceNs;
-        entry["distance_ratio_to_kaboum"] = *r.distanceNs / *ours.distanceNs;
+        entry["distance_ratio_to_kaboum"] = *r.distanceRatio;
+        entry["distance_rounds_ns"] = r.distanceRounds;
         entry["distance_overestimates"] = r.overestimates;
         entry["largest_overestimate"] = r.largestOverestimate;
       }
@@ -326,8 +390,8 @@ nlohmann::json runPairSection(const CollisionBenchOptions& options) {
 
     if (!options.json) {
       std::printf(
-          "\nconvex pairs, N=%d vertices: %zu pairs (%d overlapping), seed %llu, median of "
-          "%d runs\n",
+          "\nconvex pairs, N=%d vertices: %zu pairs (%d overlapping), seed %llu, medians of "
+          "%d interleaved rounds (ratio: median of the same-round ratios to kaboum)\n",
           n, options.pairs, overlapping, static_cast<unsigned long long>(options.seed),
           options.runs);
       std::printf(
@@ -339,10 +403,9 @@ nlohmann::json runPairSection(const CollisionBenchOptions& options) {
       std::printf("%-25s %10s %8s %11s %8s %7s %10s %7s %9s %10s\n", "method", "bool ns", "ratio",
                   "dist ns", "ratio", "missed", "deepest", "alarms", "dist>true", "largest");
       for (const MethodReport& r : reports) {
-        std::printf("%-25s %10.1f %8.2f", r.name.c_str(), r.booleanNs,
-                    r.booleanNs / ours.booleanNs);
+        std::printf("%-25s %10.1f %8.2f", r.name.c_str(), r.booleanNs, r.booleanRatio);
         if (r.distanceNs) {
-          std::printf(" %11.1f %8.2f", *r.distanceNs, *r.distanceNs / *ours.distanceNs);
+          std::printf(" %11.1f %8.2f", *r.distanceNs, *r.distanceRatio);
         } else {
           std::printf(" %11s %8s", "-", "-");
         }
@@ -411,7 +474,9 @@ VerbRunner setupBench(CLI::App& command) {
       ->capture_default_str();
   collision->add_option("--vertices", options->vertexCounts, "Vertex counts of the polytopes")
       ->capture_default_str();
-  collision->add_option("--runs", options->runs, "Timed runs; the median is reported")
+  collision
+      ->add_option("--runs", options->runs,
+                   "Timed rounds (every library once per round, interleaved); medians are reported")
       ->capture_default_str();
   collision->add_option("--seed", options->seed, "Seed of the random workload")
       ->capture_default_str();

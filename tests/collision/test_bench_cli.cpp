@@ -2,7 +2,10 @@
 // its bad options.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "../support/test_support.hpp"
 
@@ -29,6 +32,34 @@ TEST(BenchCli, ReportsEveryLibraryPerVertexCountAsJson) {
     EXPECT_EQ(methods.at("kaboum").at("distance_overestimates"), 0);
     EXPECT_DOUBLE_EQ(methods.at("kaboum").at("boolean_ratio_to_kaboum").get<double>(), 1.0);
     EXPECT_FALSE(methods.at("libccd_mpr").contains("distance_ns"));
+  }
+}
+
+// Every library is timed round by round with the others, and its ratio to kaboum is the median
+// of the same-round ratios (a drift of the machine's speed reaches both sides of a ratio alike).
+TEST(BenchCli, RatiosAreMediansOfSameRoundRatios) {
+  const ScratchDir dir;
+  const CliResult result = runCli(
+      dir, "bench collision --pairs 30 --runs 3 --vertices 8 --section pairs --json --quiet");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const auto methods = nlohmann::json::parse(result.out).at("pairs").at("8").at("methods");
+  const auto ours = methods.at("kaboum");
+  for (const char* method : {"fcl_libccd", "bullet_gjk_epa2"}) {
+    for (const std::string query : {"boolean", "distance"}) {
+      const auto theirs = methods.at(method);
+      const auto theirRounds = theirs.at(query + "_rounds_ns").get<std::vector<double>>();
+      const auto ourRounds = ours.at(query + "_rounds_ns").get<std::vector<double>>();
+      ASSERT_EQ(theirRounds.size(), 3U);
+      ASSERT_EQ(ourRounds.size(), 3U);
+      std::vector<double> ratios;
+      for (std::size_t r = 0; r < 3; ++r) ratios.push_back(theirRounds[r] / ourRounds[r]);
+      std::sort(ratios.begin(), ratios.end());
+      EXPECT_DOUBLE_EQ(theirs.at(query + "_ratio_to_kaboum").get<double>(), ratios[1])
+          << method << " " << query;
+      std::vector<double> sorted = theirRounds;
+      std::sort(sorted.begin(), sorted.end());
+      EXPECT_DOUBLE_EQ(theirs.at(query + "_ns").get<double>(), sorted[1]) << method << " " << query;
+    }
   }
 }
 
