@@ -7,6 +7,7 @@
 #include <fcl/math/bv/OBBRSS.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <iomanip>
 #include <iostream>
@@ -129,25 +130,39 @@ struct FclRobot {
   }
 };
 
-// Per-query medians over `runs` passes of check(i) for every query i, in ns; `answers` gets
-// check's results from the first pass.
-template <class Check>
-std::vector<double> medianTimes(std::size_t count, int runs, std::vector<char>& answers,
-                                Check&& check) {
-  std::vector<std::vector<double>> times(count);
-  answers.assign(count, 0);
-  for (int run = 0; run < runs; ++run) {
+// Per-query medians, in ns, of `checks` (each a callable check(i) -> bool) over `runs` rounds; a
+// round makes one timed pass of every check over all queries in turn, so that a drift of the
+// machine's speed reaches every check alike, each after an untimed pass of the same check (else
+// its first queries ran with the caches of the check before it: cold outliers in every round).
+// `answers[k]` gets check k's results.
+template <class... Checks>
+std::array<std::vector<double>, sizeof...(Checks)> medianTimes(
+    std::size_t count, int runs, std::array<std::vector<char>, sizeof...(Checks)>& answers,
+    Checks&&... checks) {
+  constexpr std::size_t kChecks = sizeof...(Checks);
+  std::array<std::vector<std::vector<double>>, kChecks> times;
+  for (std::size_t k = 0; k < kChecks; ++k) {
+    times[k].resize(count);
+    answers[k].assign(count, 0);
+  }
+  const auto pass = [&](std::size_t k, auto& check) {
+    for (std::size_t i = 0; i < count; ++i) answers[k][i] = check(i);
     for (std::size_t i = 0; i < count; ++i) {
       const auto start = Clock::now();
-      const bool answer = check(i);
-      times[i].push_back(std::chrono::duration<double, std::nano>(Clock::now() - start).count());
-      if (run == 0) answers[i] = answer;
+      answers[k][i] = check(i);
+      times[k][i].push_back(std::chrono::duration<double, std::nano>(Clock::now() - start).count());
     }
+  };
+  for (int run = 0; run < runs; ++run) {
+    std::size_t k = 0;
+    (pass(k++, checks), ...);
   }
-  std::vector<double> medians;
-  for (auto& t : times) {
-    std::nth_element(t.begin(), t.begin() + runs / 2, t.end());
-    medians.push_back(t[static_cast<std::size_t>(runs / 2)]);
+  std::array<std::vector<double>, kChecks> medians;
+  for (std::size_t k = 0; k < kChecks; ++k) {
+    for (auto& t : times[k]) {
+      std::nth_element(t.begin(), t.begin() + runs / 2, t.end());
+      medians[k].push_back(t[static_cast<std::size_t>(runs / 2)]);
+    }
   }
   return medians;
 }
@@ -199,13 +214,13 @@ nlohmann::json sideBySide(const RobotCollisionModel& robot, const CollisionScene
     pieceCount += body.pieceCount();
     for (std::size_t p = 0; p < body.pieceCount(); ++p) vertexCount += body.piece(p).vertexCount();
   }
-  std::vector<char> ours, theirs;
-  const auto kaboumNs = medianTimes(poses.size(), runs, ours, [&](std::size_t i) {
-    return robot.firstSceneCollision(poses[i], scene, 0.0).has_value();
-  });
-  const auto fclNs = medianTimes(poses.size(), runs, theirs, [&](std::size_t i) {
-    return fclPieces.collides(poses[i], fclScene.manager);
-  });
+  std::array<std::vector<char>, 2> answers;
+  const auto [kaboumNs, fclNs] = medianTimes(
+      poses.size(), runs, answers,
+      [&](std::size_t i) { return robot.firstSceneCollision(poses[i], scene, 0.0).has_value(); },
+      [&](std::size_t i) { return fclPieces.collides(poses[i], fclScene.manager); });
+  const std::vector<char>& ours = answers[0];
+  const std::vector<char>& theirs = answers[1];
   long collisions = 0, disagreements = 0;
   for (std::size_t i = 0; i < poses.size(); ++i) {
     collisions += ours[i];
@@ -326,22 +341,19 @@ nlohmann::json runFullRobotBench(const FullRobotBenchOptions& options) {
   }
   FclObstacles fclMeshScene(scene, true);
   FclRobot fclOriginal = FclRobot::originalMeshes(model);
-  std::vector<char> answers;
+  std::array<std::vector<char>, 3> answers;
   const auto check = [&](const RobotCollisionModel& robot) {
     return
         [&](std::size_t i) { return robot.firstSceneCollision(along[i], scene, 0.0).has_value(); };
   };
+  const auto [originalNs, hullNs, boundedNs] = medianTimes(
+      along.size(), options.runs, answers,
+      [&](std::size_t i) { return fclOriginal.collides(along[i], fclMeshScene.manager); },
+      check(hulls), check(bounded));
   figures["motion_checks"] = along.size();
-  figures["figure_4_9_ns"] = {
-      {"original_meshes_fcl", stats(medianTimes(along.size(), options.runs, answers,
-                                                [&](std::size_t i) {
-                                                  return fclOriginal.collides(along[i],
-                                                                              fclMeshScene.manager);
-                                                }))},
-      {"convex_hulls_kaboum",
-       stats(medianTimes(along.size(), options.runs, answers, check(hulls)))},
-      {"bounding_convex_sets_kaboum",
-       stats(medianTimes(along.size(), options.runs, answers, check(bounded)))}};
+  figures["figure_4_9_ns"] = {{"original_meshes_fcl", stats(originalNs)},
+                              {"convex_hulls_kaboum", stats(hullNs)},
+                              {"bounding_convex_sets_kaboum", stats(boundedNs)}};
   return figures;
 }
 

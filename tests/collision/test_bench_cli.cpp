@@ -63,6 +63,40 @@ TEST(BenchCli, RatiosAreMediansOfSameRoundRatios) {
   }
 }
 
+// The full-robot section: the KR5 (dart-doc) against 50 convex obstacles, kaboum and FCL on the
+// same pieces agree on every check, and the per-check statistics are consistent.
+TEST(BenchCli, FullRobotSectionAgreesWithFclAndReportsEveryStatistic) {
+  const ScratchDir dir;
+  const CliResult result =
+      runCli(dir, "bench collision --section robot --runs 1 --seed 2 --json --quiet");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const auto robot = nlohmann::json::parse(result.out).at("robot");
+  EXPECT_EQ(robot.at("runs"), 1);
+  const auto ordered = [](const nlohmann::json& stats) {
+    return stats.at("min").get<double>() > 0.0 &&
+           stats.at("min").get<double>() <= stats.at("median").get<double>() &&
+           stats.at("median").get<double>() <= stats.at("p99").get<double>() &&
+           stats.at("p99").get<double>() <= stats.at("max").get<double>() &&
+           stats.at("min").get<double>() <= stats.at("mean").get<double>() &&
+           stats.at("mean").get<double>() <= stats.at("max").get<double>();
+  };
+  for (const char* model : {"bounding_convex_sets", "convex_hulls"}) {
+    const auto& figures = robot.at(model);
+    EXPECT_EQ(figures.at("disagreements"), 0) << model;
+    EXPECT_GT(figures.at("pieces").get<int>(), 6) << model;
+    const double colliding = figures.at("collision_fraction").get<double>();
+    EXPECT_GT(colliding, 0.1) << model;
+    EXPECT_LT(colliding, 0.9) << model;
+    EXPECT_TRUE(ordered(figures.at("kaboum_ns"))) << model << figures.at("kaboum_ns");
+    EXPECT_TRUE(ordered(figures.at("fcl_dynamic_aabb_tree_ns")))
+        << model << figures.at("fcl_dynamic_aabb_tree_ns");
+  }
+  for (const char* checker :
+       {"original_meshes_fcl", "convex_hulls_kaboum", "bounding_convex_sets_kaboum"}) {
+    EXPECT_TRUE(ordered(robot.at("figure_4_9_ns").at(checker))) << checker;
+  }
+}
+
 TEST(BenchCli, PrintsATableWithProgressOnStderr) {
   const ScratchDir dir;
   const CliResult result = runCli(dir, "bench collision --pairs 20 --runs 1 --vertices 8");
