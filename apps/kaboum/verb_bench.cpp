@@ -139,7 +139,7 @@ Method measure(const std::string& name, const std::vector<double>& truth, Inters
 // libraries alike; reports medians, and ratios to the first method (kaboum) as medians of the
 // same-round ratios. Each timed sweep follows an untimed one of the same method, so that its
 // shapes are in the caches as in a run of that method alone (a cold sweep after the other
-// libraries' measured kaboum 2.5x slower: memory latency, not the query).
+// libraries' took kaboum about twice as long: memory latency, not the query).
 std::vector<MethodReport> timeInterleaved(std::vector<Method>& methods, int runs) {
   const std::size_t n = methods.size();
   std::vector<std::vector<double>> booleanNs(n), distanceNs(n);
