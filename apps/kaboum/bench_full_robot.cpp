@@ -14,6 +14,7 @@
 #include <memory>
 #include <random>
 
+#include "bench_statistics.hpp"
 #include "fcl_shapes.hpp"
 #include "kaboum/collision/robot_collision.hpp"
 #include "kaboum/collision/scene_generator.hpp"
@@ -159,10 +160,7 @@ std::array<std::vector<double>, sizeof...(Checks)> medianTimes(
   }
   std::array<std::vector<double>, kChecks> medians;
   for (std::size_t k = 0; k < kChecks; ++k) {
-    for (auto& t : times[k]) {
-      std::nth_element(t.begin(), t.begin() + runs / 2, t.end());
-      medians[k].push_back(t[static_cast<std::size_t>(runs / 2)]);
-    }
+    for (const auto& t : times[k]) medians[k].push_back(median(t));
   }
   return medians;
 }

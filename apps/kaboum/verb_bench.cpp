@@ -18,9 +18,9 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <optional>
 
 #include "bench_full_robot.hpp"
+#include "bench_statistics.hpp"
 #include "fcl_shapes.hpp"
 #include "kaboum/collision/convex_polytope.hpp"
 #include "kaboum/collision/gjk.hpp"
@@ -65,26 +65,15 @@ double sweepNanoseconds(std::size_t count, Query& query) {
   return (stop - start) / static_cast<double>(count);
 }
 
-// The median of `values` (the upper one of an even count).
-double median(std::vector<double> values) {
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
-
 // One library's answers on the workload: speed and wrong answers against the reference.
 struct MethodReport {
   std::string name;
-  double booleanNs = 0.0;
-  double booleanRatio = 0.0;          // to kaboum: the median of the same-round ratios
-  std::vector<double> booleanRounds;  // ns per query in each round
-  std::optional<double> distanceNs;
-  std::optional<double> distanceRatio;
-  std::vector<double> distanceRounds;
-  int missedOverlaps = 0;      // "free" although the true distance is <= 0
-  double deepestMissed = 0.0;  // largest penetration depth among them
-  int falseAlarms = 0;         // "colliding" although the true distance is > 1e-6
-  int overestimates = 0;       // distance above the true distance by more than 1e-9
+  std::vector<double> booleanRounds;   // ns per query in each round (timeInterleaved)
+  std::vector<double> distanceRounds;  // empty when the library has no distance query
+  int missedOverlaps = 0;              // "free" although the true distance is <= 0
+  double deepestMissed = 0.0;          // largest penetration depth among them
+  int falseAlarms = 0;                 // "colliding" although the true distance is > 1e-6
+  int overestimates = 0;               // distance above the true distance by more than 1e-9
   double largestOverestimate = 0.0;
 };
 
@@ -136,46 +125,32 @@ Method measure(const std::string& name, const std::vector<double>& truth, Inters
 
 // Times every method `runs` times, round by round (in each round a boolean sweep of every method,
 // then a distance sweep of every method), so that a drift of the machine's speed reaches all
-// libraries alike; reports medians, and ratios to the first method (kaboum) as medians of the
-// same-round ratios. Each timed sweep follows an untimed one of the same method, so that its
-// shapes are in the caches as in a run of that method alone (a cold sweep after the other
-// libraries' took kaboum about twice as long: memory latency, not the query).
+// libraries alike (ratios are then taken round by round: sameRoundRatio). Each timed sweep follows
+// an untimed one of the same method, so that its shapes are in the caches as in a run of that
+// method alone (a cold sweep after the other libraries' took kaboum about twice as long: memory
+// latency, not the query).
 std::vector<MethodReport> timeInterleaved(std::vector<Method>& methods, int runs) {
-  const std::size_t n = methods.size();
-  std::vector<std::vector<double>> booleanNs(n), distanceNs(n);
+  std::vector<MethodReport> reports;
+  for (const Method& method : methods) reports.push_back(method.report);
   for (int run = 0; run < runs; ++run) {
-    for (std::size_t k = 0; k < n; ++k) {
+    for (std::size_t k = 0; k < methods.size(); ++k) {
       methods[k].booleanSweep();
-      booleanNs[k].push_back(methods[k].booleanSweep());
+      reports[k].booleanRounds.push_back(methods[k].booleanSweep());
     }
-    for (std::size_t k = 0; k < n; ++k) {
+    for (std::size_t k = 0; k < methods.size(); ++k) {
       if (!methods[k].distanceSweep) continue;
       methods[k].distanceSweep();
-      distanceNs[k].push_back(methods[k].distanceSweep());
+      reports[k].distanceRounds.push_back(methods[k].distanceSweep());
     }
-  }
-  const auto ratios = [runs](const std::vector<double>& theirs, const std::vector<double>& ours) {
-    std::vector<double> perRound;
-    for (int run = 0; run < runs; ++run) {
-      perRound.push_back(theirs[static_cast<std::size_t>(run)] /
-                         ours[static_cast<std::size_t>(run)]);
-    }
-    return median(perRound);
-  };
-  std::vector<MethodReport> reports;
-  for (std::size_t k = 0; k < n; ++k) {
-    MethodReport report = methods[k].report;
-    report.booleanRounds = booleanNs[k];
-    report.booleanNs = median(booleanNs[k]);
-    report.booleanRatio = ratios(booleanNs[k], booleanNs[0]);
-    if (!distanceNs[k].empty()) {
-      report.distanceRounds = distanceNs[k];
-      report.distanceNs = median(distanceNs[k]);
-      report.distanceRatio = ratios(distanceNs[k], distanceNs[0]);
-    }
-    reports.push_back(report);
   }
   return reports;
+}
+
+// The ratio of two methods' times as the median of their same-round ratios.
+double sameRoundRatio(const std::vector<double>& theirs, const std::vector<double>& ours) {
+  std::vector<double> perRound;
+  for (std::size_t run = 0; run < theirs.size(); ++run) perRound.push_back(theirs[run] / ours[run]);
+  return median(perRound);
 }
 
 // libccd's view of a placed polytope: brute-force support over the local vertices.
@@ -364,18 +339,20 @@ nlohmann::json runPairSection(const CollisionBenchOptions& options) {
     }
     if (!options.quiet) std::cerr << "pairs N=" << n << ": timing...\n";
     const std::vector<MethodReport> reports = measureAll(pairs, truth, options.runs);
+    const MethodReport& ours = reports.front();
 
     nlohmann::json methods;
     for (const MethodReport& r : reports) {
-      nlohmann::json entry = {{"boolean_ns", r.booleanNs},
-                              {"boolean_ratio_to_kaboum", r.booleanRatio},
-                              {"boolean_rounds_ns", r.booleanRounds},
-                              {"missed_overlaps", r.missedOverlaps},
-                              {"deepest_missed_overlap", r.deepestMissed},
-                              {"false_alarms", r.falseAlarms}};
-      if (r.distanceNs) {
-        entry["distance_ns"] = *r.distanceNs;
-        entry["distance_ratio_to_kaboum"] = *r.distanceRatio;
+      nlohmann::json entry = {
+          {"boolean_ns", median(r.booleanRounds)},
+          {"boolean_ratio_to_kaboum", sameRoundRatio(r.booleanRounds, ours.booleanRounds)},
+          {"boolean_rounds_ns", r.booleanRounds},
+          {"missed_overlaps", r.missedOverlaps},
+          {"deepest_missed_overlap", r.deepestMissed},
+          {"false_alarms", r.falseAlarms}};
+      if (!r.distanceRounds.empty()) {
+        entry["distance_ns"] = median(r.distanceRounds);
+        entry["distance_ratio_to_kaboum"] = sameRoundRatio(r.distanceRounds, ours.distanceRounds);
         entry["distance_rounds_ns"] = r.distanceRounds;
         entry["distance_overestimates"] = r.overestimates;
         entry["largest_overestimate"] = r.largestOverestimate;
@@ -403,14 +380,16 @@ nlohmann::json runPairSection(const CollisionBenchOptions& options) {
       std::printf("%-25s %10s %8s %11s %8s %7s %10s %7s %9s %10s\n", "method", "bool ns", "ratio",
                   "dist ns", "ratio", "missed", "deepest", "alarms", "dist>true", "largest");
       for (const MethodReport& r : reports) {
-        std::printf("%-25s %10.1f %8.2f", r.name.c_str(), r.booleanNs, r.booleanRatio);
-        if (r.distanceNs) {
-          std::printf(" %11.1f %8.2f", *r.distanceNs, *r.distanceRatio);
+        std::printf("%-25s %10.1f %8.2f", r.name.c_str(), median(r.booleanRounds),
+                    sameRoundRatio(r.booleanRounds, ours.booleanRounds));
+        if (!r.distanceRounds.empty()) {
+          std::printf(" %11.1f %8.2f", median(r.distanceRounds),
+                      sameRoundRatio(r.distanceRounds, ours.distanceRounds));
         } else {
           std::printf(" %11s %8s", "-", "-");
         }
         std::printf(" %7d %10.2e %7d", r.missedOverlaps, r.deepestMissed, r.falseAlarms);
-        if (r.distanceNs) {
+        if (!r.distanceRounds.empty()) {
           std::printf(" %9d %10.2e\n", r.overestimates, r.largestOverestimate);
         } else {
           std::printf(" %9s %10s\n", "-", "-");
