@@ -6,14 +6,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 kaboum=${1:-build/release/kaboum}
-shared=../shared/meshes
-robots=/usr/share/doc/dart/data/urdf
+source bench/mesh_paths.sh
 meshes=("$robots/KR5/meshes/palm.STL" "$robots/KR5/meshes/forearm.STL"
         "$robots/wam/meshes/wam/wam_base.STL" "$robots/wam/meshes/wam/wam5.STL")
 [ -f "$shared/stanford-bunny.obj" ] && meshes+=("$shared/stanford-bunny.obj")
-for name in rocker-arm spot cow fandisk; do
-  if [ -f "$shared/$name.obj" ]; then meshes+=("$shared/$name.obj"); else meshes+=("data/meshes/$name.obj"); fi
-done
+for name in rocker-arm spot cow fandisk; do meshes+=("$(shared_mesh $name)"); done
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 echo "| mesh | side | vertices in → out | in→out min / mean / max (% diag) | out→in min / mean / max (% diag) | contractions/s |"

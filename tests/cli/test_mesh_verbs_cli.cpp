@@ -80,6 +80,41 @@ TEST(BoundCli, CheckRejectsAnInsideOutResult) {
 }
 
 // Issue 2's promise: at 1% of the diagonal, closed inputs above 10^4 vertices shrink 10x.
+// --polish lowers the distances without breaking the bound, with an --epsilon limit too.
+TEST(BoundCli, PolishLowersTheDistancesAndCheckVerifiesTheResult) {
+  ScratchDir dir;
+  const std::string wrist = quotedMesh("kr5-wrist.stl");
+  const auto sum = [](const nlohmann::json& j, const char* figure) {
+    return j["hausdorff"]["original_to_result"][figure].get<double>() +
+           j["hausdorff"]["result_to_original"][figure].get<double>();
+  };
+  for (const std::string target : {"--ratio 0.2", "--epsilon 3%"}) {
+    const std::string out = dir.file("wrist.obj");
+    const CliResult plain =
+        runCli(dir, "bound " + wrist + " -o '" + out + "' " + target + " --json -q");
+    const CliResult polished =
+        runCli(dir, "bound " + wrist + " -o '" + out + "' " + target + " --polish --json -q");
+    ASSERT_EQ(plain.exitCode, 0) << plain.err;
+    ASSERT_EQ(polished.exitCode, 0) << polished.err;
+    const nlohmann::json j0 = nlohmann::json::parse(plain.out);
+    const nlohmann::json j1 = nlohmann::json::parse(polished.out);
+    EXPECT_FALSE(j0["polish"]["enabled"].get<bool>()) << target;
+    EXPECT_TRUE(j1["polish"]["enabled"].get<bool>()) << target;
+    EXPECT_GT(j1["polish"]["moves"].get<int>(), 0) << target;
+    EXPECT_EQ(j1["output_vertices"], j0["output_vertices"]) << target;
+    EXPECT_LE(sum(j1, "max_percent_of_diagonal"), sum(j0, "max_percent_of_diagonal")) << target;
+    EXPECT_LT(sum(j1, "mean"), sum(j0, "mean")) << target;
+    if (target == "--epsilon 3%") {
+      EXPECT_LE(j1["hausdorff"]["original_to_result"]["max_percent_of_diagonal"].get<double>(),
+                3.0);
+      EXPECT_LE(j1["hausdorff"]["result_to_original"]["max_percent_of_diagonal"].get<double>(),
+                3.0);
+    }
+    const CliResult check = runCli(dir, "check " + wrist + " '" + out + "' --outer");
+    EXPECT_EQ(check.exitCode, 0) << target << check.out;
+  }
+}
+
 TEST(BoundCli, EpsilonIsADistanceInPercentOfTheDiagonal) {
   ScratchDir dir;
   const CliResult r = runCli(dir, "bound " + quotedMesh("rocker-arm.obj") + " -o '" +

@@ -11,6 +11,7 @@
 
 #include "kaboum/core/error.hpp"
 #include "kaboum/geometry/bounded_contraction.hpp"
+#include "kaboum/geometry/bounding_polish.hpp"
 #include "kaboum/geometry/indexed_heap.hpp"
 #include "kaboum/geometry/separation_certificate.hpp"
 #include "kaboum/geometry/star_directions.hpp"
@@ -1192,8 +1193,26 @@ BoundingMeshResult BoundingMeshSimplifier::result() const {
 
 }  // namespace
 
+namespace {
+
+// Applies the polish pass of options.polish to `result` and records it in its stats.
+void polishResult(const TriangleMesh& input, const BoundingMeshOptions& options,
+                  BoundingMeshResult& result) {
+  PolishOptions polish;
+  polish.side = options.side;
+  polish.progress = options.polishProgress;
+  const PolishStats stats = polishBoundingMesh(input, result.mesh, polish);
+  result.stats.polishMoves = stats.moves;
+  result.stats.polishFlips = stats.flips;
+  result.stats.polishSeconds = stats.seconds;
+}
+
+}  // namespace
+
 BoundingMeshResult simplifyBounding(const TriangleMesh& input, const BoundingMeshOptions& options) {
-  return BoundingMeshSimplifier(input, options).run();
+  BoundingMeshResult result = BoundingMeshSimplifier(input, options).run();
+  if (options.polish) polishResult(input, options, result);
+  return result;
 }
 
 BoundingMeshResult simplifyBoundingWithin(const TriangleMesh& input, BoundingMeshOptions options,
@@ -1233,6 +1252,11 @@ BoundingMeshResult simplifyBoundingWithin(const TriangleMesh& input, BoundingMes
     }
   }
   BoundingMeshResult best = fitting.result();  // nothing fitted: the contractions of cost 0 only
+  if (options.polish) {  // kept only when it stays within the limit on the meter's samples
+    BoundingMeshResult polished = best;
+    polishResult(input, options, polished);
+    if (meter.within(polished.mesh, epsilon)) best = std::move(polished);
+  }
   measured = meter.measure(best.mesh);
   if (best.stats.stopReason != "vertex target reached") {
     best.stats.stopReason = "largest simplification found within the distance limit";

@@ -32,8 +32,13 @@ struct BoundingMeshOptions {
   // Solve an edge's constrained problem only when it reaches the top of the queue. The result is
   // identical either way; false (solve every queued edge at once) is the reference it is tested on.
   bool lazyQueue = true;
-  // Called now and then with the fraction of the work done (0..1).
-  std::function<void(double)> progress;
+  // Finish with polishBoundingMesh (bounding_polish.hpp): lower both Hausdorff distances by moving
+  // vertices and flipping edges, keeping the side. Off for convex pieces (it does not keep
+  // convexity).
+  bool polish = false;
+  // Called now and then with the fraction of the work done (0..1): `progress` for Algorithm 2,
+  // `polishProgress` for the polish pass.
+  std::function<void(double)> progress, polishProgress;
 };
 
 struct BoundingMeshStats {
@@ -44,6 +49,8 @@ struct BoundingMeshStats {
   double quadricError = 0.0;  // largest quadric error (as a distance) of an executed contraction
   // Time in Algorithm 2 on the way to this result (for a distance search: the runs it built on).
   double seconds = 0.0;
+  std::size_t polishMoves = 0, polishFlips = 0;  // changes made by the polish pass
+  double polishSeconds = 0.0;                    // its time (not part of `seconds`)
   int runs = 1;            // runs of Algorithm 2 (more than one when searching for a distance)
   std::string stopReason;  // "vertex target reached", or why no further contraction was valid
 };
