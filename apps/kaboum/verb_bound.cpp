@@ -173,7 +173,7 @@ VerbRunner setupBound(CLI::App& command) {
                      "edge midpoints)");
   command.add_flag("--polish", args->polish,
                    "Finish with vertex moves and edge flips that lower both distances, keeping the "
-                   "side (slower: about 10 ms per output vertex)");
+                   "side (slower: 7-62 ms per output vertex)");
   command.add_flag("--json", args->json, "Print one JSON object instead of text");
   command.add_flag("-q,--quiet", args->quiet, "No progress on stderr");
   return [args] { return runBound(*args); };

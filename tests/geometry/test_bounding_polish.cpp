@@ -1,6 +1,6 @@
 // Property tests of the polish pass on real meshes: the side is kept (containment / inclusion), the
 // mesh stays closed, manifold, oriented and free of new self-intersections, borders stay fixed,
-// neither Hausdorff maximum rises, and the cow's outer 10% bound gets within the reference's.
+// neither Hausdorff maximum rises, and the cow's outer 10% bound comes close to the reference's.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -45,7 +45,7 @@ TriangleMesh boundAt(const TriangleMesh& mesh, BoundSide side, double ratio) {
 
 const fs::path kRobots = "/usr/share/doc/dart/data/urdf";
 
-TEST(BoundingPolish, KeepsTheSideAndTheShapeAndLowersNeitherMaximum) {
+TEST(BoundingPolish, KeepsTheSideAndTheShapeAndRaisesNeitherMaximum) {
   const std::vector<fs::path> meshes = {
       fs::path(KABOUM_DATA_DIR) / "meshes/spot.obj", kRobots / "KR5/meshes/forearm.STL",
       kRobots / "KR5/meshes/palm.STL", kRobots / "wam/meshes/wam/wam_base.STL"};
@@ -87,8 +87,9 @@ TEST(BoundingPolish, KeepsTheSideAndTheShapeAndLowersNeitherMaximum) {
 }
 
 // Issue 2's reference, outer 10% of the cow: 1.74% / 2.29% of the diagonal (original→result /
-// result→original); Algorithm 2 alone gives 2.13% / 3.43%.
-TEST(BoundingPolish, BringsTheCowsOuterTenPercentBoundToTheReference) {
+// result→original); Algorithm 2 alone gives 2.13% / 3.43%, the polish 1.748% / 1.979% (so the first
+// bound is 1.76%, just above the reference's, and the second the reference's).
+TEST(BoundingPolish, BringsTheCowsOuterTenPercentBoundCloseToTheReference) {
   const TriangleMesh mesh = loadOriented(fs::path(KABOUM_DATA_DIR) / "meshes/cow.obj");
   BoundingMeshOptions options;
   options.targetVertices = 291;

@@ -33,8 +33,8 @@ struct BoundingMeshOptions {
   // identical either way; false (solve every queued edge at once) is the reference it is tested on.
   bool lazyQueue = true;
   // Finish with polishBoundingMesh (bounding_polish.hpp): lower both Hausdorff distances by moving
-  // vertices and flipping edges, keeping the side. Off for convex pieces (it does not keep
-  // convexity).
+  // vertices and flipping edges, keeping the side. Leave it off for convex pieces: it does not
+  // keep convexity.
   bool polish = false;
   // Called now and then with the fraction of the work done (0..1): `progress` for Algorithm 2,
   // `polishProgress` for the polish pass.

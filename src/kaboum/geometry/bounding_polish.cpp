@@ -9,6 +9,7 @@
 #include <span>
 #include <unordered_map>
 
+#include "kaboum/geometry/mesh_analysis.hpp"
 #include "kaboum/geometry/surface_sampling.hpp"
 #include "kaboum/geometry/triangle_bvh.hpp"
 #include "kaboum/geometry/triangle_grid.hpp"
@@ -119,10 +120,7 @@ class PointGrid {
     return (p.array() / cell_).floor().cast<int>();
   }
   [[nodiscard]] std::size_t bucketOf(const Eigen::Array3i& c) const {
-    const auto h = static_cast<std::uint64_t>(static_cast<std::uint32_t>(c.x())) * 73856093ull ^
-                   static_cast<std::uint64_t>(static_cast<std::uint32_t>(c.y())) * 19349663ull ^
-                   static_cast<std::uint64_t>(static_cast<std::uint32_t>(c.z())) * 83492791ull;
-    return static_cast<std::size_t>(h & mask_);
+    return static_cast<std::size_t>(cellHash(c.x(), c.y(), c.z()) & mask_);
   }
 
   const std::vector<Vec3>& points_;
@@ -130,6 +128,11 @@ class PointGrid {
   std::uint64_t mask_ = 0;
   std::vector<std::uint32_t> start_, order_;
 };
+
+// The corner (0, 1 or 2) of triangle t at vertex v, which must be one of its corners.
+int cornerOf(const Triangle& t, std::uint32_t v) {
+  return t[0] == v ? 0 : t[1] == v ? 1 : 2;
+}
 
 double meanEdgeLength(const TriangleMesh& mesh) {
   double sum = 0.0;
@@ -139,15 +142,6 @@ double meanEdgeLength(const TriangleMesh& mesh) {
   return sum / static_cast<double>(3 * mesh.triangles.size());
 }
 
-double diagonalOf(const TriangleMesh& mesh) {
-  Vec3 lo = mesh.vertices.front(), hi = lo;
-  for (const Vec3& v : mesh.vertices) {
-    lo = lo.cwiseMin(v);
-    hi = hi.cwiseMax(v);
-  }
-  return (hi - lo).norm();
-}
-
 class Polisher {
  public:
   Polisher(const TriangleMesh& original, TriangleMesh& result, const PolishOptions& options)
@@ -155,7 +149,7 @@ class Polisher {
         mesh_(result),
         options_(options),
         originalBvh_(original),
-        diagonal_(diagonalOf(original)),
+        diagonal_(boundingBoxDiagonal(original)),
         gap_(1e-9 * diagonal_),
         samples_(sampleSurface(original, options.samples, options.seed)),
         cellSize_(std::max(meanEdgeLength(result), 1e-6 * diagonal_)),
@@ -199,7 +193,6 @@ class Polisher {
         dirty_.swap(changedNear_);
         stats_.moves += moves;
         stats_.flips += flips;
-        ++stats_.sweeps;
         ++done;
         if (options_.progress) options_.progress(static_cast<double>(done) / total);
         if (moves + flips == 0) break;
@@ -266,7 +259,7 @@ class Polisher {
       bool ok = true;
       for (const std::uint32_t t : ring) {
         const Triangle& tri = mesh_.triangles[t];
-        const int k = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
+        const int k = cornerOf(tri, v);
         const std::uint32_t next = tri[(k + 1) % 3], prev = tri[(k + 2) % 3];
         ok = ok && single(v, next) && single(next, v) && single(prev, v) && single(v, prev);
       }
@@ -276,7 +269,7 @@ class Polisher {
       std::uint32_t t = ring.front();
       do {
         const Triangle& tri = mesh_.triangles[t];
-        const int k = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
+        const int k = cornerOf(tri, v);
         const std::uint32_t next = tri[(k + 1) % 3];
         std::uint32_t following = t;
         for (const std::uint32_t u : ring) {
@@ -324,7 +317,7 @@ class Polisher {
   [[nodiscard]] std::array<Vec3, 4> sweptOver(std::size_t j, std::uint32_t v, const Vec3& from,
                                               const Vec3& to) const {
     const Triangle& tri = mesh_.triangles[fan_[j]];
-    const int k = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
+    const int k = cornerOf(tri, v);
     return {mesh_.vertices[tri[(k + 1) % 3]], mesh_.vertices[tri[(k + 2) % 3]], from, to};
   }
 
@@ -373,7 +366,7 @@ class Polisher {
     const Vec3 from = mesh_.vertices[v];
     for (const std::uint32_t t : fan_) {
       const Triangle& tri = mesh_.triangles[t];
-      const int k = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
+      const int k = cornerOf(tri, v);
       const Vec3& a = mesh_.vertices[tri[(k + 1) % 3]];
       const Vec3& b = mesh_.vertices[tri[(k + 2) % 3]];
       const Vec3 before = (a - from).cross(b - from), after = (a - to).cross(b - to);
@@ -466,7 +459,7 @@ class Polisher {
       movingPoints_.push_back(p);
       for (const std::uint32_t t : fan_) {
         const Triangle& tri = mesh_.triangles[t];
-        const int k = tri[0] == movingVertex_ ? 0 : tri[1] == movingVertex_ ? 1 : 2;
+        const int k = cornerOf(tri, movingVertex_);
         movingPoints_.push_back(0.5 * (p + mesh_.vertices[tri[(k + 1) % 3]]));
       }
     } else {
@@ -502,7 +495,7 @@ class Polisher {
     for (std::size_t j = 0; j < affected_.size(); ++j) {
       const std::uint32_t i = affected_[j];
       const Vec3& p = samples_[i];
-      const bool searched = restNearest_[j] != kNone || !inFan(nearest_[i]);
+      const bool searched = restNearest_[j] != kNone;
       double best = searched ? rest_[j] * rest_[j] : INFINITY;  // squared
       std::uint32_t nearest = restNearest_[j];
       if (boxDistanceSquared(p, lo, hi) < best) {
@@ -555,6 +548,65 @@ class Polisher {
     }
   }
 
+  // Move directions for the vertex at `from` whose fan_ spans [lo, hi], into directions_:
+  // towards the original's closest point, towards the worst sample this fan is nearest to,
+  // towards the original from the fan's worst point, and along the fan normal; and the first two
+  // tilted by 45° four ways, tried when those are blocked early.
+  void collectDirections(const Vec3& from, const Vec3& lo, const Vec3& hi) {
+    directions_.clear();
+    directions_.push_back({originalBvh_.closest(from).point - from});
+    double worst = 0.0;
+    Vec3 towardsWorst = Vec3::Zero();
+    const Vec3 slack = Vec3::Constant(worstSample_);
+    sampleGrid_.forEachIn(lo - slack, hi + slack, [&](std::uint32_t i) {
+      if (inFan(nearest_[i]) && distance_[i] > worst) {
+        worst = distance_[i];
+        towardsWorst = samples_[i] - from;
+      }
+    });
+    directions_.push_back({towardsWorst});
+    double worstOwn = -1.0;
+    Vec3 ownStep = Vec3::Zero(), normal = Vec3::Zero();
+    for (const std::uint32_t t : fan_) {
+      normal += (corner(t, 1) - corner(t, 0)).cross(corner(t, 2) - corner(t, 0));
+      for (const auto& w : kTrianglePoints) {
+        const Vec3 p = w[0] * corner(t, 0) + w[1] * corner(t, 1) + w[2] * corner(t, 2);
+        const TriangleBvh::Closest c = originalBvh_.closest(p);
+        if (c.distance > worstOwn) {
+          worstOwn = c.distance;
+          ownStep = c.point - p;
+        }
+      }
+    }
+    directions_.push_back({ownStep});
+    if (normal.norm() > 0.0) {
+      const double reach = 0.5 * (hi - lo).norm();
+      directions_.push_back({-normal.normalized() * reach});
+      directions_.push_back({normal.normalized() * (0.5 * reach)});
+    }
+    for (int parent = 0; parent < 2; ++parent) {
+      const Vec3 d = directions_[parent].step;
+      if (!(d.squaredNorm() > 0.0)) continue;
+      const Vec3 side = d.unitOrthogonal() * d.norm(), up = d.normalized().cross(side);
+      for (const Vec3& t : {side, up, Vec3(-side), Vec3(-up)})
+        directions_.push_back({d + t, parent});
+    }
+  }
+
+  // Sets up scoring the moves of vertex v: its link vertices and link edge midpoints, which no
+  // move changes, into fixedPoints_.
+  void collectStarPoints(std::uint32_t v) {
+    movingVertex_ = v;
+    fixedPoints_.clear();
+    for (const std::uint32_t t : fan_) {
+      const Triangle& tri = mesh_.triangles[t];
+      const int k = cornerOf(tri, v);
+      const Vec3& next = mesh_.vertices[tri[(k + 1) % 3]];
+      fixedPoints_.push_back(next);
+      fixedPoints_.push_back(0.5 * (next + mesh_.vertices[tri[(k + 2) % 3]]));
+    }
+  }
+
   // One sweep of vertex moves; reports the fraction of the vertices tried now and then.
   template <class Report>
   std::size_t moveVertices(Rule rule, Report&& report) {
@@ -566,61 +618,13 @@ class Polisher {
       const Vec3 from = mesh_.vertices[v];
       Vec3 lo, hi;
       fanBounds(lo, hi);
-      // Directions: towards the original's closest point, towards the worst sample this fan is
-      // nearest to, towards the original from the fan's worst point, and along the fan normal;
-      // and the first two tilted by 45° four ways, tried when those are blocked early.
-      directions_.clear();
-      directions_.push_back({originalBvh_.closest(from).point - from});
-      double worst = 0.0;
-      Vec3 towardsWorst = Vec3::Zero();
-      const Vec3 slack = Vec3::Constant(worstSample_);
-      sampleGrid_.forEachIn(lo - slack, hi + slack, [&](std::uint32_t i) {
-        if (inFan(nearest_[i]) && distance_[i] > worst) {
-          worst = distance_[i];
-          towardsWorst = samples_[i] - from;
-        }
-      });
-      directions_.push_back({towardsWorst});
-      double worstOwn = -1.0;
-      Vec3 ownStep = Vec3::Zero(), normal = Vec3::Zero();
-      for (const std::uint32_t t : fan_) {
-        normal += (corner(t, 1) - corner(t, 0)).cross(corner(t, 2) - corner(t, 0));
-        for (const auto& w : kTrianglePoints) {
-          const Vec3 p = w[0] * corner(t, 0) + w[1] * corner(t, 1) + w[2] * corner(t, 2);
-          const TriangleBvh::Closest c = originalBvh_.closest(p);
-          if (c.distance > worstOwn) {
-            worstOwn = c.distance;
-            ownStep = c.point - p;
-          }
-        }
-      }
-      directions_.push_back({ownStep});
-      if (normal.norm() > 0.0) {
-        const double reach = 0.5 * (hi - lo).norm();
-        directions_.push_back({-normal.normalized() * reach});
-        directions_.push_back({normal.normalized() * (0.5 * reach)});
-      }
-      for (int parent = 0; parent < 2; ++parent) {
-        const Vec3 d = directions_[parent].step;
-        if (!(d.squaredNorm() > 0.0)) continue;
-        const Vec3 side = d.unitOrthogonal() * d.norm(), up = d.normalized().cross(side);
-        for (const Vec3& t : {side, up, Vec3(-side), Vec3(-up)})
-          directions_.push_back({d + t, parent});
-      }
+      collectDirections(from, lo, hi);
       Vec3 reachLo = lo, reachHi = hi;
       for (const Direction& d : directions_) {
         reachLo = reachLo.cwiseMin(from + d.step);
         reachHi = reachHi.cwiseMax(from + d.step);
       }
-      movingVertex_ = v;
-      fixedPoints_.clear();
-      for (const std::uint32_t t : fan_) {
-        const Triangle& tri = mesh_.triangles[t];
-        const int k = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
-        const Vec3& next = mesh_.vertices[tri[(k + 1) % 3]];
-        fixedPoints_.push_back(next);
-        fixedPoints_.push_back(0.5 * (next + mesh_.vertices[tri[(k + 2) % 3]]));
-      }
+      collectStarPoints(v);
       gatherAffected(reachLo, reachHi);
       const Score base = score(false);
       Score best = base;

@@ -27,7 +27,6 @@ struct PolishOptions {
 
 struct PolishStats {
   std::size_t moves = 0, flips = 0;  // accepted vertex moves and edge flips
-  int sweeps = 0;
   double seconds = 0.0;
 };
 

@@ -22,6 +22,13 @@ struct Box3 {
   }
 };
 
+// The hash of grid cell (x, y, z) that spatial hashes reduce to a bucket index with a mask.
+inline std::uint64_t cellHash(int x, int y, int z) {
+  return static_cast<std::uint64_t>(static_cast<std::uint32_t>(x)) * 73856093ull ^
+         static_cast<std::uint64_t>(static_cast<std::uint32_t>(y)) * 19349663ull ^
+         static_cast<std::uint64_t>(static_cast<std::uint32_t>(z)) * 83492791ull;
+}
+
 // The box of triangle (a, b, c), rounded outward.
 Box3 triangleBox(const Vec3& a, const Vec3& b, const Vec3& c);
 
@@ -77,10 +84,7 @@ class TriangleGrid {
     }
   }
   [[nodiscard]] std::size_t bucketOf(int x, int y, int z) const {
-    const auto h = static_cast<std::uint64_t>(static_cast<std::uint32_t>(x)) * 73856093ull ^
-                   static_cast<std::uint64_t>(static_cast<std::uint32_t>(y)) * 19349663ull ^
-                   static_cast<std::uint64_t>(static_cast<std::uint32_t>(z)) * 83492791ull;
-    return static_cast<std::size_t>(h & mask_);
+    return static_cast<std::size_t>(cellHash(x, y, z) & mask_);
   }
 
   double cellSize_;
