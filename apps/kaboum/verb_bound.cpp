@@ -23,6 +23,7 @@ struct BoundArgs {
   std::string merge = "constant";
   std::size_t samples = 200000;
   bool polish = false;
+  int relocations = 10;
   bool json = false;
   bool quiet = false;
 };
@@ -40,6 +41,7 @@ int runBound(const BoundArgs& args) {
                   : args.merge == "full" ? QuadricMerge::Full
                                          : QuadricMerge::Constant;
   options.polish = args.polish;
+  options.polishRelocations = args.relocations;
   const double diagonal = loaded.diagonal;
   if (args.vertices > 0) options.targetVertices = args.vertices;
   if (args.ratio > 0.0) {
@@ -114,6 +116,7 @@ int runBound(const BoundArgs& args) {
          {{"enabled", args.polish},
           {"moves", s.polishMoves},
           {"flips", s.polishFlips},
+          {"relocations", s.polishRelocations},
           {"seconds", s.polishSeconds}}},
         {"quadric_error", s.quadricError},
         {"hausdorff", toJson(hausdorff)},
@@ -132,8 +135,8 @@ int runBound(const BoundArgs& args) {
     std::cout << fmt::format("distance search: {} runs of the bounding mesh algorithm\n", s.runs);
   }
   if (args.polish) {
-    std::cout << fmt::format("polish: {} vertex moves, {} edge flips in {:.3f} s\n", s.polishMoves,
-                             s.polishFlips, s.polishSeconds);
+    std::cout << fmt::format("polish: {} vertex moves, {} edge flips, {} relocations in {:.3f} s\n",
+                             s.polishMoves, s.polishFlips, s.polishRelocations, s.polishSeconds);
   }
   if (s.lockedVertices > 0) {
     std::cout << fmt::format("kept fixed: {} vertices on borders or non-manifold parts\n",
@@ -174,6 +177,12 @@ VerbRunner setupBound(CLI::App& command) {
   command.add_flag("--polish", args->polish,
                    "Finish with vertex moves and edge flips that lower both distances, keeping the "
                    "side (slower: 7-62 ms per output vertex)");
+  command
+      .add_option("--relocations", args->relocations,
+                  "With --polish: at most this many vertices moved from where the surfaces are "
+                  "closest to where they are farthest apart (0: none)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   command.add_flag("--json", args->json, "Print one JSON object instead of text");
   command.add_flag("-q,--quiet", args->quiet, "No progress on stderr");
   return [args] { return runBound(*args); };

@@ -101,6 +101,8 @@ TEST(BoundCli, PolishLowersTheDistancesAndCheckVerifiesTheResult) {
     EXPECT_FALSE(j0["polish"]["enabled"].get<bool>()) << target;
     EXPECT_TRUE(j1["polish"]["enabled"].get<bool>()) << target;
     EXPECT_GT(j1["polish"]["moves"].get<int>(), 0) << target;
+    ASSERT_TRUE(j1["polish"]["relocations"].is_number_unsigned()) << target;
+    EXPECT_LE(j1["polish"]["relocations"].get<int>(), 10) << target;  // the default cap
     EXPECT_EQ(j1["output_vertices"], j0["output_vertices"]) << target;
     EXPECT_LE(sum(j1, "max_percent_of_diagonal"), sum(j0, "max_percent_of_diagonal")) << target;
     EXPECT_LT(sum(j1, "mean"), sum(j0, "mean")) << target;
@@ -199,6 +201,7 @@ TEST(BoundCli, BadInputGivesOneLineAndExitCodeTwo) {
       {"bound " + cow + " " + out + " --epsilon -1%", "--epsilon"},
       {"bound " + cow + " -o '" + dir.file("out.xyz") + "' --ratio 0.5", "out.xyz"},
       {"bound " + cow + " " + out + " --ratio 0.5 --cost volume", "--cost"},
+      {"bound " + cow + " " + out + " --ratio 0.5 --polish --relocations -1", "--relocations"},
       {"bound '" + writeMoebius(dir) + "' " + out + " --ratio 0.5", "moebius.obj"},
       {"check " + cow + " '" + dir.file("missing.obj") + "'", "missing.obj"},
   };

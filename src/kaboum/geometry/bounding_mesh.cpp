@@ -1201,9 +1201,11 @@ void polishResult(const TriangleMesh& input, const BoundingMeshOptions& options,
   PolishOptions polish;
   polish.side = options.side;
   polish.progress = options.polishProgress;
+  polish.relocations = options.polishRelocations;
   const PolishStats stats = polishBoundingMesh(input, result.mesh, polish);
   result.stats.polishMoves = stats.moves;
   result.stats.polishFlips = stats.flips;
+  result.stats.polishRelocations = stats.relocations;
   result.stats.polishSeconds = stats.seconds;
 }
 

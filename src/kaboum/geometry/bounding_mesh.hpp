@@ -36,6 +36,7 @@ struct BoundingMeshOptions {
   // vertices and flipping edges, keeping the side. Leave it off for convex pieces: it does not
   // keep convexity.
   bool polish = false;
+  int polishRelocations = 10;  // PolishOptions::relocations of the polish pass
   // Called now and then with the fraction of the work done (0..1): `progress` for Algorithm 2,
   // `polishProgress` for the polish pass.
   std::function<void(double)> progress, polishProgress;
@@ -50,6 +51,7 @@ struct BoundingMeshStats {
   // Time in Algorithm 2 on the way to this result (for a distance search: the runs it built on).
   double seconds = 0.0;
   std::size_t polishMoves = 0, polishFlips = 0;  // changes made by the polish pass
+  std::size_t polishRelocations = 0;             // relocations it kept
   double polishSeconds = 0.0;                    // its time (not part of `seconds`)
   int runs = 1;            // runs of Algorithm 2 (more than one when searching for a distance)
   std::string stopReason;  // "vertex target reached", or why no further contraction was valid

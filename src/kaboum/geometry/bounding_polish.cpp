@@ -6,6 +6,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <span>
 #include <unordered_map>
 
@@ -25,11 +26,17 @@ constexpr double kTrianglePoints[7][3] = {{1, 0, 0},
                                           {.5, 0, .5},
                                           {0, .5, .5},
                                           {1. / 3, 1. / 3, 1. / 3}};
+// Relocations are judged on the result→original distance at the barycentric grid points
+// (i, j, k) / kCheckGrid of every result triangle: a denser set than kTrianglePoints, because a
+// relocation changes long triangles whose interior the scoring points do not see.
+constexpr int kCheckGrid = 8;
 constexpr std::uint32_t kNone = 0xffffffffu;
 // Bisection steps of the line search for the farthest valid point along a move direction.
 constexpr int kBisections = 7;
 // A move direction blocked before this fraction of its step is also tried tilted.
 constexpr double kTiltBelow = 0.5;
+// A split point's barycentric coordinates are at least this (no slivers).
+constexpr double kSplitMargin = 0.1;
 
 // The projections of `p` and `q` on `axis` are more than `gap`·|axis| apart.
 bool separatedAlong(const Vec3& axis, std::span<const Vec3> p, std::span<const Vec3> q,
@@ -142,9 +149,18 @@ double meanEdgeLength(const TriangleMesh& mesh) {
   return sum / static_cast<double>(3 * mesh.triangles.size());
 }
 
+// A point on result triangle `triangle` and its distance to the other surface.
+struct Spot {
+  std::uint32_t triangle;
+  Vec3 point;
+  double distance;
+};
+
 class Polisher {
  public:
-  Polisher(const TriangleMesh& original, TriangleMesh& result, const PolishOptions& options)
+  // `focus`: the vertices each phase starts with (all when empty).
+  Polisher(const TriangleMesh& original, TriangleMesh& result, const PolishOptions& options,
+           std::vector<std::uint32_t> focus = {})
       : original_(original),
         mesh_(result),
         options_(options),
@@ -171,6 +187,7 @@ class Polisher {
       grid_.insert(t, boxes_[t]);
     }
     stamp_.assign(mesh_.triangles.size(), 0);
+    focus_ = std::move(focus);
     findMovableVertices();
   }
 
@@ -184,7 +201,7 @@ class Polisher {
       for (int s = 0; s < sweeps; ++s) {
         worstSample_ =
             distance_.empty() ? 0.0 : *std::max_element(distance_.begin(), distance_.end());
-        if (s == 0) dirty_.assign(mesh_.vertices.size(), 1);
+        if (s == 0) startPhase();
         changedNear_.assign(mesh_.vertices.size(), 0);
         const std::size_t moves = moveVertices(rule, [&](double sweepFraction) {
           if (options_.progress) options_.progress((done + sweepFraction) / total);
@@ -202,6 +219,85 @@ class Polisher {
     stats_.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
     return stats_;
+  }
+
+  // The two worst spots, whose distances are the largest ones: the point of the result nearest
+  // to the sample farthest from it, and the grid point (kCheckGrid) of the result farthest from
+  // the original.
+  [[nodiscard]] std::array<Spot, 2> worstSpots() const {
+    Spot nearWorstSample{kNone, Vec3::Zero(), 0.0};
+    if (!distance_.empty()) {
+      const auto worst = std::max_element(distance_.begin(), distance_.end());
+      const std::uint32_t i = static_cast<std::uint32_t>(worst - distance_.begin());
+      const std::uint32_t t = nearest_[i];
+      nearWorstSample = {
+          t, closestPointOnTriangle(samples_[i], corner(t, 0), corner(t, 1), corner(t, 2)), *worst};
+    }
+    return {nearWorstSample, worstResultPoint()};
+  }
+
+  // The half-edge collapse of an interior vertex v into a neighbour w that keeps every guarantee
+  // (the sweep of v to w meets no original triangle, the link condition holds, no triangle
+  // flips, degenerates or crosses another) with the smallest largest distance around it.
+  [[nodiscard]] std::optional<std::pair<std::uint32_t, std::uint32_t>> cheapestCollapse() {
+    worstSample_ = distance_.empty() ? 0.0 : *std::max_element(distance_.begin(), distance_.end());
+    std::optional<std::pair<std::uint32_t, std::uint32_t>> best;
+    Score bestScore{INFINITY, INFINITY};
+    std::vector<std::uint32_t> full, neighbours;
+    for (std::uint32_t v = 0; v < mesh_.vertices.size(); ++v) {
+      if (!movable_[v] || incident_[v].size() < 4) continue;
+      full = fan_ = incident_[v];
+      neighbours.clear();
+      for (const std::uint32_t t : full) {
+        const Triangle& tri = mesh_.triangles[t];
+        neighbours.push_back(tri[(cornerOf(tri, v) + 1) % 3]);
+      }
+      Vec3 lo, hi;
+      fanBounds(lo, hi);
+      collectStarPoints(v);
+      gatherAffected(lo, hi);
+      // The points no collapse of v changes already score above the best collapse found.
+      if (unaffected_.max > bestScore.max) continue;
+      for (const std::uint32_t w : neighbours) {
+        std::uint32_t opposite[2] = {kNone, kNone};
+        removed_ = {kNone, kNone};
+        fan_.clear();
+        for (const std::uint32_t t : full) {
+          const Triangle& tri = mesh_.triangles[t];
+          const int k = cornerOf(tri, v);
+          const int side = tri[(k + 1) % 3] == w ? 0 : tri[(k + 2) % 3] == w ? 1 : -1;
+          if (side < 0) {
+            fan_.push_back(t);
+          } else {
+            removed_[side] = t;
+            opposite[side] = tri[(k + 2 - side) % 3];
+          }
+        }
+        if (!movable_[w] || removed_[0] == kNone || removed_[1] == kNone ||
+            incident_[opposite[0]].size() < 4 || incident_[opposite[1]].size() < 4) {
+          continue;
+        }
+        const bool linkCondition = std::all_of(neighbours.begin(), neighbours.end(), [&](auto u) {
+          return u == w || u == opposite[0] || u == opposite[1] || !edgeExists(u, w);
+        });
+        if (!linkCondition) continue;
+        gatherBlockers(v, mesh_.vertices[w]);
+        if (!keepsSide(v, mesh_.vertices[w])) continue;
+        for (const std::uint32_t t : fan_) mesh_.triangles[t][cornerOf(mesh_.triangles[t], v)] = w;
+        movingVertex_ = w;
+        if (fanCrossesNothing()) {
+          const Score s = score(false);
+          if (s.max < bestScore.max || (s.max == bestScore.max && s.sum < bestScore.sum)) {
+            bestScore = s;
+            best = {{v, w}};
+          }
+        }
+        for (const std::uint32_t t : fan_) mesh_.triangles[t][cornerOf(mesh_.triangles[t], w)] = v;
+        movingVertex_ = v;
+      }
+      removed_ = {kNone, kNone};
+    }
+    return best;
   }
 
  private:
@@ -234,8 +330,29 @@ class Polisher {
       epoch_ = 1;
     }
   }
+  // Triangles of fan_, and those a collapse being scored removes.
   [[nodiscard]] bool inFan(std::uint32_t t) const {
-    return std::find(fan_.begin(), fan_.end(), t) != fan_.end();
+    return t == removed_[0] || t == removed_[1] ||
+           std::find(fan_.begin(), fan_.end(), t) != fan_.end();
+  }
+  void startPhase() {
+    dirty_.assign(mesh_.vertices.size(), focus_.empty() ? 1 : 0);
+    for (const std::uint32_t v : focus_) dirty_[v] = 1;
+  }
+  [[nodiscard]] Spot worstResultPoint() const {
+    Spot worst{kNone, Vec3::Zero(), -1.0};
+    for (std::uint32_t t = 0; t < mesh_.triangles.size(); ++t) {
+      for (int i = 0; i <= kCheckGrid; ++i) {
+        for (int j = 0; i + j <= kCheckGrid; ++j) {
+          const Vec3 p =
+              (i * corner(t, 0) + j * corner(t, 1) + (kCheckGrid - i - j) * corner(t, 2)) /
+              kCheckGrid;
+          const double d = originalBvh_.closest(p).distance;
+          if (d > worst.distance) worst = {t, p, d};
+        }
+      }
+    }
+    return worst;
   }
 
   // Interior manifold vertices: every link edge has exactly one twin and the triangles around
@@ -363,6 +480,17 @@ class Polisher {
   // Moving vertex v (whose triangles are fan_) to `to` keeps every guarantee; `to` must lie
   // between v and the point blockers_ were gathered for.
   [[nodiscard]] bool canMove(std::uint32_t v, const Vec3& to) {
+    if (!keepsSide(v, to)) return false;
+    const Vec3 from = mesh_.vertices[v];
+    mesh_.vertices[v] = to;
+    const bool ok = fanCrossesNothing();
+    mesh_.vertices[v] = from;
+    return ok;
+  }
+
+  // Moving vertex v to `to` flips and degenerates none of fan_'s triangles and sweeps over none
+  // of blockers_.
+  [[nodiscard]] bool keepsSide(std::uint32_t v, const Vec3& to) const {
     const Vec3 from = mesh_.vertices[v];
     for (const std::uint32_t t : fan_) {
       const Triangle& tri = mesh_.triangles[t];
@@ -383,10 +511,7 @@ class Polisher {
         return false;
       }
     }
-    mesh_.vertices[v] = to;
-    const bool ok = fanCrossesNothing();
-    mesh_.vertices[v] = from;
-    return ok;
+    return true;
   }
 
   // The original samples within the worst sample distance of the box [lo, hi], where every
@@ -773,7 +898,9 @@ class Polisher {
   std::vector<std::uint32_t> stamp_;  // per result triangle: last query that visited it
   std::uint32_t epoch_ = 0;
   double worstSample_ = 0.0;  // largest sample distance at the start of the sweep
+  std::vector<std::uint32_t> focus_;
   std::vector<std::uint32_t> fan_, affected_;
+  std::array<std::uint32_t, 2> removed_{kNone, kNone};  // see inFan
   // Per affected sample: distance to the triangles outside fan_ and the nearest of them; for a
   // sample nearest to the fan, its old distance (a lower bound) and kNone until searched.
   std::vector<double> rest_;
@@ -793,12 +920,106 @@ class Polisher {
   PolishStats stats_;
 };
 
+// Splits triangle `spot.triangle` at `spot.point` (kept away from its edges) into three; returns
+// the new vertex and the triangle's corners.
+std::vector<std::uint32_t> splitAt(TriangleMesh& mesh, const Spot& spot) {
+  const Triangle t = mesh.triangles[spot.triangle];
+  const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
+  const Vec3 n = (b - a).cross(c - a);
+  Eigen::Array3d w((c - b).cross(spot.point - b).dot(n), (a - c).cross(spot.point - c).dot(n),
+                   (b - a).cross(spot.point - a).dot(n));
+  w = (w / n.squaredNorm()).max(kSplitMargin);
+  w /= w.sum();
+  const auto v = static_cast<std::uint32_t>(mesh.vertices.size());
+  mesh.vertices.push_back(w[0] * a + w[1] * b + w[2] * c);
+  mesh.triangles[spot.triangle] = {t[0], t[1], v};
+  mesh.triangles.push_back({t[1], t[2], v});
+  mesh.triangles.push_back({t[2], t[0], v});
+  return {v, t[0], t[1], t[2]};
+}
+
+// Collapses vertex v into its neighbour w (the two triangles on edge (v, w) go; v's slot takes
+// the last vertex); returns w's index afterwards and its neighbours.
+std::vector<std::uint32_t> collapseInto(TriangleMesh& mesh, std::uint32_t v, std::uint32_t w) {
+  std::erase_if(mesh.triangles, [&](const Triangle& t) {
+    return std::find(t.begin(), t.end(), v) != t.end() &&
+           std::find(t.begin(), t.end(), w) != t.end();
+  });
+  const auto last = static_cast<std::uint32_t>(mesh.vertices.size() - 1);
+  for (Triangle& t : mesh.triangles) {
+    for (std::uint32_t& x : t) {
+      if (x == v) x = w;
+    }
+  }
+  if (w == last) w = v;
+  mesh.vertices[v] = mesh.vertices[last];
+  mesh.vertices.pop_back();
+  std::vector<std::uint32_t> around{w};
+  for (Triangle& t : mesh.triangles) {
+    for (std::uint32_t& x : t) {
+      if (x == last) x = v;
+    }
+    if (std::find(t.begin(), t.end(), w) != t.end())
+      around.insert(around.end(), t.begin(), t.end());
+  }
+  return around;
+}
+
 }  // namespace
 
 PolishStats polishBoundingMesh(const TriangleMesh& original, TriangleMesh& result,
                                const PolishOptions& options) {
   if (original.triangles.empty() || result.triangles.empty()) return {};
-  return Polisher(original, result, options).run();
+  const auto begin = std::chrono::steady_clock::now();
+  const double share = options.relocations > 0 ? 0.7 : 1.0;  // of the progress, for the sweeps
+  PolishOptions sweeps = options;
+  sweeps.progress = nullptr;
+  if (options.progress) sweeps.progress = [&](double f) { options.progress(share * f); };
+  PolishStats stats;
+  std::array<Spot, 2> worst;  // their distances are the current maxima
+  {
+    Polisher polisher(original, result, sweeps);
+    stats = polisher.run();
+    worst = polisher.worstSpots();
+  }
+  // Relocations: a vertex goes from where the surfaces are closest to where they are farthest.
+  sweeps.progress = nullptr;
+  const double gain = 1e-12 * boundingBoxDiagonal(original);
+  for (int r = 0; r < options.relocations; ++r) {
+    if (options.progress) options.progress(share + (1.0 - share) * r / options.relocations);
+    bool accepted = false;
+    for (const Spot& spot : worst) {
+      if (spot.triangle == kNone) continue;
+      TriangleMesh candidate = result;
+      std::optional<std::pair<std::uint32_t, std::uint32_t>> collapse;
+      PolishStats first, second;
+      {
+        Polisher polisher(original, candidate, sweeps, splitAt(candidate, spot));
+        first = polisher.run();
+        collapse = polisher.cheapestCollapse();
+      }
+      if (!collapse) continue;
+      Polisher polisher(original, candidate, sweeps,
+                        collapseInto(candidate, collapse->first, collapse->second));
+      second = polisher.run();
+      const std::array<Spot, 2> now = polisher.worstSpots();
+      const bool lower =
+          now[0].distance < worst[0].distance - gain || now[1].distance < worst[1].distance - gain;
+      if (!lower || now[0].distance > worst[0].distance || now[1].distance > worst[1].distance)
+        continue;
+      worst = now;
+      stats.moves += first.moves + second.moves;
+      stats.flips += first.flips + second.flips;
+      ++stats.relocations;
+      result = std::move(candidate);
+      accepted = true;
+      break;
+    }
+    if (!accepted) break;
+  }
+  if (options.progress) options.progress(1.0);
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  return stats;
 }
 
 }  // namespace kaboum
