@@ -10,14 +10,18 @@
 
 #include "kaboum/geometry/bounding_mesh.hpp"
 #include "kaboum/geometry/subdivision.hpp"
-#include "kaboum/geometry/test_shapes.hpp"
 #include "kaboum/io/mesh_io.hpp"
+#include "kaboum/testing/data_paths.hpp"
+#include "kaboum/testing/test_shapes.hpp"
 
 // GCC cannot see that the replaced operator new below pairs with the replaced delete.
 #pragma GCC diagnostic ignored "-Wmismatched-new-delete"
 
 // Heap accounting: current and peak bytes live on the heap, for the memory-per-vertex counter.
 namespace {
+using namespace kaboum::geometry;
+using namespace kaboum::io;
+using namespace kaboum::testing;
 std::atomic<std::size_t> liveBytes{0}, peakBytes{0};
 void* track(void* p) {
   if (p == nullptr) throw std::bad_alloc();
@@ -51,32 +55,34 @@ void operator delete[](void* p, std::size_t) noexcept {
 namespace {
 
 std::string meshPath(const std::string& name) {
-  const std::filesystem::path shared =
-      std::filesystem::path(KABOUM_DATA_DIR) / "../../shared/meshes";
-  if (std::filesystem::exists(shared / name)) return (shared / name).string();
-  return (std::filesystem::path(KABOUM_DATA_DIR) / "meshes" / name).string();
+  const auto shared = kaboum::testing::sharedDir();
+  if (shared && std::filesystem::exists(*shared / "meshes" / name)) {
+    return (*shared / "meshes" / name).string();
+  }
+  return kaboum::testing::dataFile("meshes/" + name);
 }
 
 // Loop-subdivided copies of spot.obj: 2.9k, 11.7k, 46.8k, 187k and 749k vertices.
-const kaboum::TriangleMesh& spot(int level) {
-  static std::vector<kaboum::TriangleMesh> levels;
-  if (levels.empty()) levels.push_back(kaboum::readMesh(meshPath("spot.obj")));
+const kaboum::geometry::TriangleMesh& spot(int level) {
+  static std::vector<kaboum::geometry::TriangleMesh> levels;
+  if (levels.empty()) levels.push_back(kaboum::io::readMesh(meshPath("spot.obj")));
   while (static_cast<int>(levels.size()) <= level) {
-    levels.push_back(kaboum::subdivideLoop(levels.back()));
+    levels.push_back(kaboum::geometry::subdivideLoop(levels.back()));
   }
   return levels[static_cast<std::size_t>(level)];
 }
 
 void BoundOuterTenPercent(benchmark::State& state) {
-  const kaboum::TriangleMesh& mesh = spot(static_cast<int>(state.range(0)));
-  kaboum::BoundingMeshOptions options;
+  const kaboum::geometry::TriangleMesh& mesh = spot(static_cast<int>(state.range(0)));
+  kaboum::geometry::BoundingMeshOptions options;
   options.targetVertices = mesh.vertices.size() / 10;
   std::size_t contractions = 0;
   double seconds = 0.0;
   for (auto _ : state) {
     const std::size_t before = liveBytes.load();
     peakBytes = before;
-    const kaboum::BoundingMeshResult result = kaboum::simplifyBounding(mesh, options);
+    const kaboum::geometry::BoundingMeshResult result =
+        kaboum::geometry::simplifyBounding(mesh, options);
     state.counters["peak_bytes_per_input_vertex"] =
         static_cast<double>(peakBytes.load() - before) / static_cast<double>(mesh.vertices.size());
     contractions = result.stats.contractions;
@@ -96,15 +102,17 @@ BENCHMARK(BoundOuterTenPercent)
 // Issue 2's "no pathological slow case": the same number of contractions (2,000, taken off the
 // rim) next to two vertices of valence `range(0)` (makeDoubleCone).
 void BoundNextToHighValence(benchmark::State& state) {
-  const kaboum::TriangleMesh mesh = kaboum::makeDoubleCone(static_cast<int>(state.range(0)));
-  kaboum::BoundingMeshOptions options;
+  const kaboum::geometry::TriangleMesh mesh =
+      kaboum::testing::makeDoubleCone(static_cast<int>(state.range(0)));
+  kaboum::geometry::BoundingMeshOptions options;
   options.targetVertices = mesh.vertices.size() - 2000;
   std::size_t contractions = 0;
   double seconds = 0.0;
   for (auto _ : state) {
     const std::size_t before = liveBytes.load();
     peakBytes = before;
-    const kaboum::BoundingMeshResult result = kaboum::simplifyBounding(mesh, options);
+    const kaboum::geometry::BoundingMeshResult result =
+        kaboum::geometry::simplifyBounding(mesh, options);
     state.counters["peak_bytes_per_input_vertex"] =
         static_cast<double>(peakBytes.load() - before) / static_cast<double>(mesh.vertices.size());
     contractions = result.stats.contractions;

@@ -1,25 +1,27 @@
 // Speed of the convex narrow phase on the issue-3 workload (random polytope pairs, ~40%
 // overlapping): GJK boolean and distance per vertex count, cold and warm-started along a motion.
-// `kaboum bench collision` runs the same workload against FCL, Bullet and libccd side by side.
+// `kaboum-compare collision` runs the same workload against FCL, Bullet and libccd side by side.
 #include <benchmark/benchmark.h>
 
 #include "kaboum/collision/convex_polytope.hpp"
 #include "kaboum/collision/gjk.hpp"
-#include "kaboum/collision/polytope_pairs.hpp"
+#include "kaboum/testing/polytope_pairs.hpp"
 
 namespace {
+using namespace kaboum::collision;
+using namespace kaboum::testing;
 
 using kaboum::Vec3;
 using kaboum::collision::ConvexPolytope;
-using kaboum::collision::PolytopePair;
 using kaboum::collision::TransformedSupport;
+using kaboum::testing::PolytopePair;
 
 struct Workload {
   std::vector<PolytopePair> pairs;
   std::vector<ConvexPolytope> a, b;
 
   explicit Workload(int vertexCount)
-      : pairs(kaboum::collision::randomPolytopePairs(1024, vertexCount, 1)) {
+      : pairs(kaboum::testing::randomPolytopePairs(1024, vertexCount, 1)) {
     for (const PolytopePair& pair : pairs) {
       a.emplace_back(pair.localA);
       b.emplace_back(pair.localB);

@@ -1,26 +1,31 @@
 // Full-robot collision checks (issue 3): the KR5's convex pieces against 50 random convex
 // obstacles, self-collision, swept motions, swept self-collision and isInside. The side-by-side
-// comparison with FCL is `kaboum bench collision --section robot`
-// (apps/kaboum/bench_full_robot.cpp).
+// comparison with FCL is `kaboum-compare collision --section robot`
+// (bench/compare/bench_full_robot.cpp).
 #include <benchmark/benchmark.h>
 
 #include <random>
 
 #include "kaboum/collision/predicates.hpp"
-#include "kaboum/collision/scene_generator.hpp"
 #include "kaboum/collision/swept.hpp"
+#include "kaboum/io/urdf_loader.hpp"
 #include "kaboum/kinematics/random_configuration.hpp"
-#include "kaboum/kinematics/urdf_loader.hpp"
+#include "kaboum/testing/data_paths.hpp"
+#include "kaboum/testing/robot_collision_models.hpp"
+#include "kaboum/testing/scene_generator.hpp"
 
 namespace {
 
 using namespace kaboum;
+using namespace kaboum::kinematics;
+using namespace kaboum::io;
+using namespace kaboum::testing;
 using namespace kaboum::collision;
 
-const std::string kKr5 = "/usr/share/doc/dart/data/urdf/KR5/KR5 sixx R650.urdf";
+const std::string kKr5 = kaboum::testing::kr5Urdf();
 
 struct Kr5World {
-  RobotCollisionModel robot{loadUrdf(kKr5)};
+  RobotCollisionModel robot = kaboum::testing::robotCollisionModel(kKr5);
   CollisionScene scene =
       randomObstacleScene(Aabb{Vec3(-0.8, -1.2, -0.8), Vec3(0.8, 0.4, 0.8)}, 50, 12, 0.04, 1);
   std::vector<std::vector<double>> configurations;

@@ -5,10 +5,13 @@
 // sets comes from bench/contingent_benchmarks.sh (docs/contingent.md).
 #include <benchmark/benchmark.h>
 
+#include "kaboum/scenarios/force_sensing.hpp"
 #include "kaboum/symbolic/contingent.hpp"
-#include "kaboum/symbolic/force_sensing.hpp"
+#include "kaboum/testing/data_paths.hpp"
 
 namespace {
+using namespace kaboum::scenarios;
+using namespace kaboum::testing;
 
 using namespace kaboum::symbolic;
 
@@ -23,7 +26,7 @@ void solve(benchmark::State& state, const ContingentProblem& contingent) {
     worlds = task.initialBelief().size();
   }
   const TreeMetrics metrics = measure(result.plan);
-  state.counters["solved"] = result.status == SearchStatus::Solved ? 1 : 0;
+  state.counters["solved"] = result.status == kaboum::PlannerStatus::Solved ? 1 : 0;
   state.counters["actions"] = metrics.actions;
   state.counters["leaves"] = metrics.leaves;
   state.counters["depth"] = static_cast<double>(metrics.depth);
@@ -52,7 +55,8 @@ void BM_PublicInstance(benchmark::State& state) {
       {"blocks", "domain.pddl", "p3.pddl"}};
   const auto& instance = kInstances[state.range(0)];
   state.SetLabel(instance[0]);
-  const std::string dir = std::string(KABOUM_DATA_DIR) + "/pddl/contingent/" + instance[0] + "/";
+  const std::string dir =
+      kaboum::testing::dataFile(std::string("pddl/contingent/") + instance[0]) + "/";
   solve(state, loadContingent(dir + instance[1], dir + instance[2]));
 }
 BENCHMARK(BM_PublicInstance)->DenseRange(0, 6)->Unit(benchmark::kMillisecond);

@@ -15,10 +15,14 @@
 #include "kaboum/geometry/convex_hull.hpp"
 #include "kaboum/geometry/mesh_analysis.hpp"
 #include "kaboum/geometry/quick_hull.hpp"
-#include "kaboum/geometry/test_shapes.hpp"
 #include "kaboum/io/mesh_io.hpp"
+#include "kaboum/testing/data_paths.hpp"
+#include "kaboum/testing/test_shapes.hpp"
 
 namespace {
+using namespace kaboum::geometry;
+using namespace kaboum::io;
+using namespace kaboum::testing;
 
 using kaboum::Vec3;
 
@@ -29,24 +33,25 @@ struct PointSet {
 };
 
 PointSet pointSet(std::string name, std::vector<Vec3> points) {
-  const double diagonal = kaboum::boundingBoxDiagonal(kaboum::TriangleMesh{points, {}});
+  const double diagonal =
+      kaboum::geometry::boundingBoxDiagonal(kaboum::geometry::TriangleMesh{points, {}});
   return {std::move(name), std::move(points), 1e-8 * diagonal};
 }
 
 const std::vector<PointSet>& pointSets() {
   static const std::vector<PointSet> sets = [] {
     std::vector<PointSet> result;
-    const std::filesystem::path kr5 = "/usr/share/doc/dart/data/urdf/KR5/meshes";
+    const std::filesystem::path kr5 = kaboum::testing::kr5MeshDir();
     for (const char* name :
          {"base_link", "shoulder", "bicep", "elbow", "forearm", "wrist", "palm"}) {
       const std::filesystem::path path = kr5 / (std::string(name) + ".STL");
       if (!std::filesystem::exists(path)) continue;
-      const kaboum::TriangleMesh mesh = kaboum::readMesh(path.string());
-      const kaboum::MeshAnalysis analysis = kaboum::analyzeMesh(mesh);
+      const kaboum::geometry::TriangleMesh mesh = kaboum::io::readMesh(path.string());
+      const kaboum::geometry::MeshAnalysis analysis = kaboum::geometry::analyzeMesh(mesh);
       result.push_back(pointSet(std::string("KR5_") + name, mesh.vertices));
-      result.push_back(pointSet(
-          std::string("KR5_") + name + "_below_cut",
-          kaboum::pointsBelowCut(mesh, 0.5 * (analysis.boxMin.z() + analysis.boxMax.z()))));
+      result.push_back(pointSet(std::string("KR5_") + name + "_below_cut",
+                                kaboum::testing::pointsBelowCut(
+                                    mesh, 0.5 * (analysis.boxMin.z() + analysis.boxMax.z()))));
     }
     std::mt19937 rng(1);
     std::normal_distribution<double> gauss;
@@ -63,7 +68,7 @@ const std::vector<PointSet>& pointSets() {
 
 void BM_Qhull(benchmark::State& state, const PointSet* set) {
   for (auto _ : state) {
-    const kaboum::ConvexHull hull = kaboum::convexHull(set->points);
+    const kaboum::geometry::ConvexHull hull = kaboum::geometry::convexHull(set->points);
     benchmark::DoNotOptimize(hull.mesh.triangles.data());
   }
   state.counters["points"] = static_cast<double>(set->points.size());
@@ -71,7 +76,8 @@ void BM_Qhull(benchmark::State& state, const PointSet* set) {
 
 void BM_QuickHull(benchmark::State& state, const PointSet* set) {
   for (auto _ : state) {
-    const std::optional<kaboum::TriangleMesh> hull = kaboum::quickHull(set->points, set->tolerance);
+    const std::optional<kaboum::geometry::TriangleMesh> hull =
+        kaboum::geometry::quickHull(set->points, set->tolerance);
     if (!hull) {
       state.SkipWithError("no hull");
       break;

@@ -22,8 +22,12 @@
 
 #include "kaboum/geometry/convex_decomposition.hpp"
 #include "kaboum/io/mesh_io.hpp"
+#include "kaboum/testing/data_paths.hpp"
 
 namespace {
+using namespace kaboum::geometry;
+using namespace kaboum::io;
+using namespace kaboum::testing;
 
 namespace fs = std::filesystem;
 
@@ -31,28 +35,29 @@ unsigned seedCount = 1;  // --seeds=N
 
 // The options of every decomposition: the defaults (3% of the diagonal, at most 11 pieces) and
 // --refine=N.
-kaboum::DecompositionOptions benchOptions;
+kaboum::geometry::DecompositionOptions benchOptions;
 
 struct Link {
   std::string robot, name;
-  kaboum::TriangleMesh mesh;
+  kaboum::geometry::TriangleMesh mesh;
 };
 
 const std::vector<Link>& links() {
   static const std::vector<Link> all = [] {
     std::vector<Link> result;
-    const fs::path kr5 = "/usr/share/doc/dart/data/urdf/KR5/meshes";
+    const fs::path kr5 = kaboum::testing::kr5MeshDir();
     for (const char* name :
          {"base_link", "shoulder", "bicep", "elbow", "forearm", "wrist", "palm"}) {
       const fs::path path = kr5 / (std::string(name) + ".STL");
-      if (fs::exists(path)) result.push_back({"KR5", name, kaboum::readMesh(path.string())});
+      if (fs::exists(path)) result.push_back({"KR5", name, kaboum::io::readMesh(path.string())});
     }
     const fs::path comau =
-        fs::path(KABOUM_DATA_DIR) / "../../shared/scenarios/bimanual-assembly/robots";
+        kaboum::testing::sharedDir().value_or(fs::path()) / "scenarios/bimanual-assembly/robots";
     for (int i = 0; i <= 6; ++i) {
       const fs::path path = comau / ("link" + std::to_string(i) + ".wrl");
       if (fs::exists(path)) {
-        result.push_back({"Comau", "link" + std::to_string(i), kaboum::readMesh(path.string())});
+        result.push_back(
+            {"Comau", "link" + std::to_string(i), kaboum::io::readMesh(path.string())});
       }
     }
     return result;
@@ -63,25 +68,26 @@ const std::vector<Link>& links() {
 // One link: time per decomposition; counters give the result's Table 4.3 columns (distances in %
 // of the diagonal, measured once outside the timed loop).
 void BM_DecomposeLink(benchmark::State& state, const Link* link) {
-  const kaboum::DecompositionOptions& options = benchOptions;
-  kaboum::Decomposition result;
+  const kaboum::geometry::DecompositionOptions& options = benchOptions;
+  kaboum::geometry::Decomposition result;
   for (auto _ : state) {
-    result = kaboum::decomposeBounding(link->mesh, options);
+    result = kaboum::geometry::decomposeBounding(link->mesh, options);
     benchmark::DoNotOptimize(result.pieces.data());
   }
-  const kaboum::DecompositionQuality quality =
-      kaboum::measureDecomposition(result.closedInput, result.pieces, 100000, 1);
+  const kaboum::geometry::DecompositionQuality quality =
+      kaboum::geometry::measureDecomposition(result.closedInput, result.pieces, 100000, 1);
   const double percent = 100.0 / quality.diagonal;
   if (seedCount > 1) {
     double sum = quality.approximationToOriginal.max, least = sum, most = sum;
     const double reference = 0.037 * quality.diagonal;  // the reference's best, 3.7%
     int above = sum > reference ? 1 : 0;
     for (unsigned seed = 2; seed <= seedCount; ++seed) {
-      kaboum::DecompositionOptions seeded = options;
+      kaboum::geometry::DecompositionOptions seeded = options;
       seeded.seed = seed;
-      const kaboum::Decomposition other = kaboum::decomposeBounding(link->mesh, seeded);
+      const kaboum::geometry::Decomposition other =
+          kaboum::geometry::decomposeBounding(link->mesh, seeded);
       const double distance =
-          kaboum::measureDecomposition(other.closedInput, other.pieces, 100000, 1)
+          kaboum::geometry::measureDecomposition(other.closedInput, other.pieces, 100000, 1)
               .approximationToOriginal.max;
       sum += distance;
       least = std::min(least, distance);
@@ -116,7 +122,7 @@ void BM_DecomposeLink(benchmark::State& state, const Link* link) {
 
 // A whole robot: every link on two threads (decomposeBoundingEach), wall-clock time.
 void BM_DecomposeRobot(benchmark::State& state, const std::string& robot) {
-  std::vector<kaboum::TriangleMesh> meshes;
+  std::vector<kaboum::geometry::TriangleMesh> meshes;
   for (const Link& link : links()) {
     if (link.robot == robot) meshes.push_back(link.mesh);
   }
@@ -126,7 +132,7 @@ void BM_DecomposeRobot(benchmark::State& state, const std::string& robot) {
   }
   std::size_t pieces = 0;
   for (auto _ : state) {
-    const auto results = kaboum::decomposeBoundingEach(meshes, benchOptions, 2);
+    const auto results = kaboum::geometry::decomposeBoundingEach(meshes, benchOptions, 2);
     pieces = 0;
     for (const auto& r : results) pieces += r.pieces.size();
   }

@@ -5,18 +5,22 @@
 #include <numbers>
 #include <random>
 
+#include "kaboum/io/urdf_loader.hpp"
 #include "kaboum/kinematics/arm_ik.hpp"
 #include "kaboum/kinematics/constraint_sampler.hpp"
 #include "kaboum/kinematics/numeric_ik.hpp"
 #include "kaboum/kinematics/random_configuration.hpp"
-#include "kaboum/kinematics/urdf_loader.hpp"
+#include "kaboum/testing/data_paths.hpp"
 
 namespace {
 
 using namespace kaboum;
+using namespace kaboum::kinematics;
+using namespace kaboum::io;
+using namespace kaboum::testing;
 
-const std::string kKr5 = "/usr/share/doc/dart/data/urdf/KR5/KR5 sixx R650.urdf";
-const std::string kWam = "/usr/share/doc/dart/data/urdf/wam/wam.urdf";
+const std::string kKr5 = kaboum::testing::kr5Urdf();
+const std::string kWam = kaboum::testing::wamUrdf();
 
 struct Robot {
   explicit Robot(const std::string& path) : model(loadUrdf(path)), chain(model) {}

@@ -9,8 +9,14 @@
 #include "kaboum/geometry/mesh_analysis.hpp"
 #include "kaboum/geometry/mesh_cleanup.hpp"
 #include "kaboum/io/mesh_io.hpp"
+#include "kaboum/testing/data_paths.hpp"
 
 namespace kaboum {
+
+using namespace kaboum::geometry;
+using namespace kaboum::io;
+using namespace kaboum::testing;
+
 namespace {
 
 // One 1-to-4 midpoint subdivision; the midpoints are shared between neighbours.
@@ -38,8 +44,7 @@ TriangleMesh subdivide(const TriangleMesh& mesh) {
 
 // The cow subdivided `levels` times: 2,903 / 11,609 / 46,433 / 185,729 / 742,913 vertices.
 const TriangleMesh& cow(int levels) {
-  static std::vector<TriangleMesh> cache{
-      readMesh(std::string(KABOUM_DATA_DIR) + "/meshes/cow.obj")};
+  static std::vector<TriangleMesh> cache{readMesh(kaboum::testing::dataFile("meshes/cow.obj"))};
   while (static_cast<int>(cache.size()) <= levels) cache.push_back(subdivide(cache.back()));
   return cache[static_cast<std::size_t>(levels)];
 }

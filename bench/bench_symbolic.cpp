@@ -1,20 +1,23 @@
 // Symbolic planner benchmarks: Stacked n Objects per search mode (thesis Table 6.4) and the IPC
-// classical instances of /work/shared/pddl/classical when present (coverage against Fast
+// classical instances of the shared folder's pddl/classical when present (coverage against Fast
 // Downward's recorded figures, see docs/benchmarks.md, "Symbolic planning"). Counters: solved, plan
 // length, expanded and generated states.
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
 
+#include "kaboum/scenarios/stacked_objects.hpp"
 #include "kaboum/symbolic/planner.hpp"
-#include "kaboum/symbolic/stacked_objects.hpp"
+#include "kaboum/testing/data_paths.hpp"
 
 namespace {
+using namespace kaboum::scenarios;
+using namespace kaboum::testing;
 
 using namespace kaboum::symbolic;
 
 void report(benchmark::State& state, const PlanReport& result) {
-  const bool solved = result.search.status == SearchStatus::Solved;
+  const bool solved = result.search.status == kaboum::PlannerStatus::Solved;
   state.counters["solved"] = solved ? 1 : 0;
   state.counters["plan_length"] = solved ? static_cast<double>(result.plan.size()) : -1;
   state.counters["expanded"] = static_cast<double>(result.search.statistics.expanded);
@@ -47,7 +50,9 @@ BENCHMARK(BM_StackedObjects)->Apply(stackedArguments)->Unit(benchmark::kMillisec
 
 // One benchmark per IPC instance: the default (LAMA-like) setting, 60 s.
 void registerClassical() {
-  const std::filesystem::path root = "/work/shared/pddl/classical";
+  const auto shared = kaboum::testing::sharedDir();
+  if (!shared) return;
+  const std::filesystem::path root = *shared / "pddl/classical";
   if (!std::filesystem::exists(root)) return;
   for (const std::string domainName : {"blocks", "gripper", "logistics00", "depot", "miconic"}) {
     const auto dir = root / domainName;

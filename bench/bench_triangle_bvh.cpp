@@ -5,17 +5,19 @@
 #include <random>
 
 #include "kaboum/geometry/mesh_comparison.hpp"
-#include "kaboum/geometry/test_shapes.hpp"
 #include "kaboum/geometry/triangle_bvh.hpp"
+#include "kaboum/testing/test_shapes.hpp"
 
 namespace {
+using namespace kaboum::geometry;
+using namespace kaboum::testing;
 
-using kaboum::TriangleBvh;
-using kaboum::TriangleMesh;
 using kaboum::Vec3;
+using kaboum::geometry::TriangleBvh;
+using kaboum::geometry::TriangleMesh;
 
 const TriangleMesh& sphere() {
-  static const TriangleMesh mesh = kaboum::makeIcosphere(6);  // 81,920 triangles
+  static const TriangleMesh mesh = kaboum::testing::makeIcosphere(6);  // 81,920 triangles
   return mesh;
 }
 
@@ -79,15 +81,15 @@ void BM_BvhIntersectsTriangle(benchmark::State& state) {
 BENCHMARK(BM_BvhIntersectsTriangle);
 
 void BM_CountSelfIntersections(benchmark::State& state) {
-  for (auto _ : state) benchmark::DoNotOptimize(kaboum::countSelfIntersections(sphere()));
+  for (auto _ : state) benchmark::DoNotOptimize(kaboum::geometry::countSelfIntersections(sphere()));
 }
 BENCHMARK(BM_CountSelfIntersections)->Unit(benchmark::kMillisecond);
 
 void BM_VerifyOuterContainment(benchmark::State& state) {
-  const TriangleMesh larger = kaboum::transformMesh(sphere(), 1.01, Vec3::Zero());
+  const TriangleMesh larger = kaboum::testing::transformMesh(sphere(), 1.01, Vec3::Zero());
   for (auto _ : state) {
-    benchmark::DoNotOptimize(
-        kaboum::verifyContainment(sphere(), larger, kaboum::BoundSide::Outer, 100000, 1));
+    benchmark::DoNotOptimize(kaboum::geometry::verifyContainment(
+        sphere(), larger, kaboum::geometry::BoundSide::Outer, 100000, 1));
   }
 }
 BENCHMARK(BM_VerifyOuterContainment)->Unit(benchmark::kMillisecond);

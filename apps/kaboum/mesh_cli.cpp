@@ -12,6 +12,9 @@
 
 namespace kaboum::cli {
 
+using namespace kaboum::geometry;
+using namespace kaboum::io;
+
 void addSideFlags(CLI::App& command, BoundSide& side) {
   auto* outer = command.add_flag_callback(
       "--outer", [&side] { side = BoundSide::Outer; },

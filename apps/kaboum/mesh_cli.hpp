@@ -12,6 +12,8 @@
 
 namespace kaboum::cli {
 
+using namespace kaboum::geometry;
+
 // Adds mutually exclusive --outer (default) / --inner flags that set `side`.
 void addSideFlags(CLI::App& command, BoundSide& side);
 

@@ -1,4 +1,5 @@
-// Self-registration of CLI verbs: each verb_*.cpp adds its subcommand without touching main.cpp.
+// Self-registration of CLI verbs: each verb_*.cpp adds its subcommand without touching main.cpp;
+// runVerbs() dispatches to them (the `kaboum` tool and the `kaboum-compare` benchmark program).
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -19,6 +20,10 @@ struct VerbInfo {
 };
 
 std::vector<VerbInfo>& verbRegistry();
+
+// Parses the command line, runs the chosen verb and returns its exit code; bad options and
+// InputError give one line on stderr, "PROGRAM: error: ...", and exit code 2.
+int runVerbs(int argc, char** argv, const std::string& program, const std::string& description);
 
 struct VerbRegistration {
   VerbRegistration(std::string name, std::string description, VerbSetup setup) {

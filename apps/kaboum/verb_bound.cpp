@@ -11,6 +11,10 @@
 #include "verb.hpp"
 
 namespace kaboum::cli {
+
+using namespace kaboum::geometry;
+using namespace kaboum::io;
+
 namespace {
 
 struct BoundArgs {

@@ -9,6 +9,10 @@
 #include "verb.hpp"
 
 namespace kaboum::cli {
+
+using namespace kaboum::geometry;
+using namespace kaboum::io;
+
 namespace {
 
 struct CheckArgs {

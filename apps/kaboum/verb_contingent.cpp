@@ -5,12 +5,17 @@
 #include <memory>
 
 #include "kaboum/core/error.hpp"
+#include "kaboum/core/planner_status.hpp"
+#include "kaboum/scenarios/toy_geometry.hpp"
 #include "kaboum/symbolic/contingent.hpp"
 #include "kaboum/symbolic/heuristic.hpp"
-#include "kaboum/symbolic/toy_geometry.hpp"
 #include "verb.hpp"
 
 namespace kaboum::cli {
+
+using namespace kaboum::symbolic;
+using namespace kaboum::scenarios;
+
 namespace {
 
 struct ContingentCliOptions {
@@ -28,10 +33,10 @@ int runContingent(const ContingentCliOptions& options) {
   const symbolic::ContingentProblem contingent =
       symbolic::loadContingent(options.domain, options.problem);
   const symbolic::ProcedureRegistry procedures =
-      options.toyGeometry ? symbolic::toyGeometryProcedures() : symbolic::ProcedureRegistry{};
+      options.toyGeometry ? scenarios::toyGeometryProcedures() : symbolic::ProcedureRegistry{};
   symbolic::KnowledgeTask task(contingent, procedures, options.maxWorlds);
   const symbolic::ContingentResult result = symbolic::solveContingent(task, options.search);
-  const bool solved = result.status == symbolic::SearchStatus::Solved;
+  const bool solved = result.status == PlannerStatus::Solved;
   const symbolic::TreeMetrics metrics = symbolic::measure(result.plan);
   const std::string tree = solved ? symbolic::formatPlanTree(task, result.plan) : "";
   if (solved && !options.planOut.empty()) {
@@ -40,7 +45,7 @@ int runContingent(const ContingentCliOptions& options) {
   }
   const auto& stats = result.statistics;
   if (options.json) {
-    nlohmann::json report = {{"status", symbolic::toString(result.status)},
+    nlohmann::json report = {{"status", toString(result.status)},
                              {"search", options.search.mode},
                              {"plan", symbolic::planTreeJson(task, result.plan)},
                              {"tree",
@@ -63,7 +68,7 @@ int runContingent(const ContingentCliOptions& options) {
   } else {
     if (solved && options.planOut.empty()) std::cout << tree;
     if (!options.quiet) {
-      std::cerr << "kaboum contingent: " << symbolic::toString(result.status);
+      std::cerr << "kaboum contingent: " << toString(result.status);
       if (solved) {
         std::cerr << ", " << metrics.actions << " action(s) in the tree, " << metrics.leaves
                   << " leaf/leaves, depth " << metrics.depth << ", " << metrics.dagNodes

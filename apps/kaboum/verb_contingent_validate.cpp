@@ -4,11 +4,15 @@
 #include <memory>
 
 #include "kaboum/core/error.hpp"
+#include "kaboum/scenarios/toy_geometry.hpp"
 #include "kaboum/symbolic/contingent.hpp"
-#include "kaboum/symbolic/toy_geometry.hpp"
 #include "verb.hpp"
 
 namespace kaboum::cli {
+
+using namespace kaboum::symbolic;
+using namespace kaboum::scenarios;
+
 namespace {
 
 struct ValidateOptions {
@@ -24,7 +28,7 @@ int runValidate(const ValidateOptions& options) {
   const symbolic::ContingentProblem contingent =
       symbolic::loadContingent(options.domain, options.problem);
   const symbolic::ProcedureRegistry procedures =
-      options.toyGeometry ? symbolic::toyGeometryProcedures() : symbolic::ProcedureRegistry{};
+      options.toyGeometry ? scenarios::toyGeometryProcedures() : symbolic::ProcedureRegistry{};
   symbolic::KnowledgeTask task(contingent, procedures);
   const symbolic::PlanTree plan =
       symbolic::parsePlanTree(symbolic::readTextFile(options.plan), options.plan, task);

@@ -13,6 +13,10 @@
 #include "verb.hpp"
 
 namespace kaboum::cli {
+
+using namespace kaboum::geometry;
+using namespace kaboum::io;
+
 namespace {
 
 struct DecomposeArgs {

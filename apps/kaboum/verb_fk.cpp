@@ -4,11 +4,15 @@
 #include <nlohmann/json.hpp>
 
 #include "kaboum/core/error.hpp"
+#include "kaboum/io/urdf_loader.hpp"
 #include "kaboum/kinematics/kinematic_chain.hpp"
-#include "kaboum/kinematics/urdf_loader.hpp"
 #include "verb.hpp"
 
 namespace kaboum::cli {
+
+using namespace kaboum::kinematics;
+using namespace kaboum::io;
+
 namespace {
 
 struct FkOptions {

@@ -6,12 +6,16 @@
 #include <nlohmann/json.hpp>
 
 #include "kaboum/core/error.hpp"
+#include "kaboum/io/urdf_loader.hpp"
 #include "kaboum/kinematics/arm_ik.hpp"
 #include "kaboum/kinematics/numeric_ik.hpp"
-#include "kaboum/kinematics/urdf_loader.hpp"
 #include "verb.hpp"
 
 namespace kaboum::cli {
+
+using namespace kaboum::kinematics;
+using namespace kaboum::io;
+
 namespace {
 
 struct IkOptions {

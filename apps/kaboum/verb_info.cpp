@@ -11,6 +11,9 @@
 
 namespace kaboum::cli {
 
+using namespace kaboum::geometry;
+using namespace kaboum::io;
+
 namespace {
 
 nlohmann::json toJson(const std::string& file, const MeshAnalysis& a) {

@@ -4,11 +4,15 @@
 #include <memory>
 
 #include "kaboum/core/error.hpp"
+#include "kaboum/core/planner_status.hpp"
 #include "kaboum/symbolic/heuristic.hpp"
 #include "kaboum/symbolic/planner.hpp"
 #include "verb.hpp"
 
 namespace kaboum::cli {
+
+using namespace kaboum::symbolic;
+
 namespace {
 
 struct PlanOptions {
@@ -30,7 +34,7 @@ int runPlan(const PlanOptions& options) {
   }
   const symbolic::PlanReport report =
       symbolic::planFiles(options.domain, options.problem, symbolic::ProcedureRegistry{}, search);
-  const bool solved = report.search.status == symbolic::SearchStatus::Solved;
+  const bool solved = report.search.status == PlannerStatus::Solved;
   if (solved && !options.planOut.empty()) {
     std::ofstream out(options.planOut);
     if (!out) throw InputError(locate(options.planOut, "cannot write plan file"));
@@ -45,7 +49,7 @@ int runPlan(const PlanOptions& options) {
     }
     if (!options.quiet) {
       const auto& stats = report.search.statistics;
-      std::cerr << "kaboum plan: " << symbolic::toString(report.search.status);
+      std::cerr << "kaboum plan: " << toString(report.search.status);
       if (solved) std::cerr << ", " << report.plan.size() << " step(s)";
       std::cerr << "; " << stats.expanded << " expanded, " << stats.generated << " generated; "
                 << report.grounding.operators << " operators; parse " << report.parseSeconds

@@ -1,4 +1,3 @@
-// kaboum command-line entry point: dispatches to the registered verbs and maps errors to exit 2.
 #include <algorithm>
 #include <iostream>
 #include <map>
@@ -13,15 +12,11 @@ std::vector<VerbInfo>& verbRegistry() {
   return registry;
 }
 
-}  // namespace kaboum::cli
-
-int main(int argc, char** argv) {
-  using namespace kaboum::cli;
-  CLI::App app{
-      "kaboum: knowledge-level task and motion planning with bounding geometry.\n"
-      "Run `kaboum VERB --help` for the options of a verb."};
+int runVerbs(int argc, char** argv, const std::string& program, const std::string& description) {
+  CLI::App app{description + "\nRun `" + program + " VERB --help` for the options of a verb.",
+               program};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "kaboum 0.1.0");
+  app.set_version_flag("--version", program + " " + KABOUM_VERSION);
 
   auto verbs = verbRegistry();
   std::sort(verbs.begin(), verbs.end(),
@@ -32,6 +27,12 @@ int main(int argc, char** argv) {
     runners[command] = verb.setup(*command);
   }
 
+  if (argc > 1 && argv[1][0] != '-' &&
+      std::none_of(verbs.begin(), verbs.end(),
+                   [&](const VerbInfo& v) { return v.name == argv[1]; })) {
+    std::cerr << program << ": error: unknown verb '" << argv[1] << "' (see --help)\n";
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -41,7 +42,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "kaboum: error: " << e.what() << " (see --help)\n";
+    std::cerr << program << ": error: " << e.what() << " (see --help)\n";
     return 2;
   }
 
@@ -50,11 +51,13 @@ int main(int argc, char** argv) {
       if (command->parsed()) return run();
     }
   } catch (const kaboum::InputError& e) {
-    std::cerr << "kaboum: error: " << e.what() << "\n";
+    std::cerr << program << ": error: " << e.what() << "\n";
     return 2;
   } catch (const std::bad_alloc&) {
-    std::cerr << "kaboum: error: out of memory\n";
+    std::cerr << program << ": error: out of memory\n";
     return 2;
   }
   return 2;
 }
+
+}  // namespace kaboum::cli

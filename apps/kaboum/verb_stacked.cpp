@@ -1,14 +1,17 @@
 // `kaboum stacked N`: writes the Stacked n Objects domain and problem (thesis Table 6.3).
-#include "kaboum/symbolic/stacked_objects.hpp"
+#include "kaboum/scenarios/stacked_objects.hpp"
 #include "pddl_generator_verb.hpp"
 
 namespace kaboum::cli {
+
+using namespace kaboum::scenarios;
+
 namespace {
 
 VerbRunner setupStacked(CLI::App& command) {
   return setupPddlGeneratorVerb(
-      command, {"stacked", "Number of objects (at least 2)", symbolic::stackedObjectsDomain,
-                symbolic::stackedObjectsProblem});
+      command, {"stacked", "Number of objects (at least 2)", scenarios::stackedObjectsDomain,
+                scenarios::stackedObjectsProblem});
 }
 
 const VerbRegistration registration{

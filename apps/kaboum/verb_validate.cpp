@@ -8,6 +8,9 @@
 #include "verb.hpp"
 
 namespace kaboum::cli {
+
+using namespace kaboum::symbolic;
+
 namespace {
 
 struct ValidateOptions {

@@ -17,15 +17,23 @@
 #include "bench_statistics.hpp"
 #include "fcl_shapes.hpp"
 #include "kaboum/collision/robot_collision.hpp"
-#include "kaboum/collision/scene_generator.hpp"
 #include "kaboum/core/error.hpp"
 #include "kaboum/geometry/convex_hull.hpp"
 #include "kaboum/io/mesh_io.hpp"
+#include "kaboum/io/urdf_loader.hpp"
 #include "kaboum/kinematics/random_configuration.hpp"
-#include "kaboum/kinematics/urdf_loader.hpp"
+#include "kaboum/testing/robot_collision_models.hpp"
+#include "kaboum/testing/scene_generator.hpp"
 #include "pair_decisions.hpp"
 
 namespace kaboum::cli {
+
+using namespace kaboum::geometry;
+using namespace kaboum::kinematics;
+using namespace kaboum::io;
+using namespace kaboum::collision;
+using namespace kaboum::testing;
+
 namespace {
 
 using collision::CollisionScene;
@@ -260,7 +268,7 @@ CollisionScene obstaclesAwayFromTheBase(const RobotCollisionModel& robot,
   robot.model().linkPoses(std::vector<double>(static_cast<std::size_t>(robot.model().dof()), 0.0),
                           home);
   const CollisionScene candidates =
-      collision::randomObstacleScene(region, 4 * options.obstacles, 12, 0.04, options.seed);
+      testing::randomObstacleScene(region, 4 * options.obstacles, 12, 0.04, options.seed);
   CollisionScene scene;
   for (std::size_t o = 0;
        o < candidates.size() && static_cast<int>(scene.size()) < options.obstacles; ++o) {
@@ -290,12 +298,12 @@ nlohmann::json runFullRobotBench(const FullRobotBenchOptions& options) {
   };
   const RobotModel model = loadUrdf(options.urdf);
   progress("convex hulls and bounding convex decomposition of the links...");
-  const RobotCollisionModel hulls(model);
+  const RobotCollisionModel hulls = testing::robotCollisionModel(model);
   collision::LinkPieceOptions decomposition;
   decomposition.decompose = true;
   decomposition.decomposition.epsilonPercent = options.decomposePercent;
   const auto decomposeStart = Clock::now();
-  const RobotCollisionModel bounded(model, decomposition);
+  const RobotCollisionModel bounded = testing::robotCollisionModel(model, decomposition);
   const double decomposeSeconds =
       std::chrono::duration<double>(Clock::now() - decomposeStart).count();
 

@@ -8,10 +8,14 @@
 #include <ostream>
 #include <string>
 
+#include "kaboum/testing/data_paths.hpp"
+
 namespace kaboum::cli {
 
+using namespace kaboum::testing;
+
 struct FullRobotBenchOptions {
-  std::string urdf = "/usr/share/doc/dart/data/urdf/KR5/KR5 sixx R650.urdf";
+  std::string urdf = kaboum::testing::kr5Urdf();
   int obstacles = 50;
   int queries = 10000;  // random configurations for the side-by-side check
   int motions = 50;     // random straight motions for the Figure 4.9 distributions

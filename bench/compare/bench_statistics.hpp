@@ -1,4 +1,4 @@
-// Summary statistics shared by the `kaboum bench` sections.
+// Summary statistics shared by the `kaboum-compare collision` sections.
 #pragma once
 
 #include <algorithm>

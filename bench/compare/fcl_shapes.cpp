@@ -6,6 +6,8 @@
 
 namespace kaboum::cli {
 
+using namespace kaboum::geometry;
+
 std::shared_ptr<fcl::Convexd> fclConvex(std::span<const Vec3> points) {
   const ConvexHull hull = convexHull(points, "convex piece");
   auto vertices = std::make_shared<std::vector<fcl::Vector3d>>(hull.mesh.vertices.begin(),

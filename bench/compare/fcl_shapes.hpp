@@ -11,6 +11,8 @@
 
 namespace kaboum::cli {
 
+using namespace kaboum::geometry;
+
 // The convex hull of `points` as an fcl::Convexd (same vertices and facets kaboum uses).
 std::shared_ptr<fcl::Convexd> fclConvex(std::span<const Vec3> points);
 

@@ -4,6 +4,8 @@
 
 namespace kaboum::cli {
 
+using namespace kaboum::collision;
+
 void PairDecisionCounts::add(const collision::ConvexPolytope& a,
                              const collision::TransformedSupport& bInA) {
   using collision::PairVerdict;

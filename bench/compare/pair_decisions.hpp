@@ -9,6 +9,8 @@
 
 namespace kaboum::cli {
 
+using namespace kaboum::collision;
+
 class PairDecisionCounts {
  public:
   // Counts the step that decides a with b placed in a's frame (margin 0).

@@ -1,5 +1,5 @@
-// `kaboum bench`: side-by-side benchmarks against the reference libraries on identical queries.
-// `bench collision` runs its sections (the convex pair narrow phase here; more may be added to
+// `kaboum-compare collision`: side-by-side benchmarks against the reference libraries on identical
+// queries. It runs its sections (the convex pair narrow phase, the full robot; see
 // kCollisionSections) and prints ns per query, ratios and wrong answers vs an exact reference.
 #include <BulletCollision/NarrowPhaseCollision/btGjkEpa2.h>
 #include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
@@ -24,16 +24,21 @@
 #include "fcl_shapes.hpp"
 #include "kaboum/collision/convex_polytope.hpp"
 #include "kaboum/collision/gjk.hpp"
-#include "kaboum/collision/minkowski_reference.hpp"
-#include "kaboum/collision/polytope_pairs.hpp"
 #include "kaboum/core/error.hpp"
+#include "kaboum/testing/minkowski_reference.hpp"
+#include "kaboum/testing/polytope_pairs.hpp"
 #include "pair_decisions.hpp"
 #include "verb.hpp"
 
 namespace kaboum::cli {
+
+using namespace kaboum::geometry;
+using namespace kaboum::collision;
+using namespace kaboum::testing;
+
 namespace {
 
-using collision::PolytopePair;
+using testing::PolytopePair;
 
 struct CollisionBenchOptions {
   std::size_t pairs = 2000;
@@ -330,11 +335,11 @@ nlohmann::json runPairSection(const CollisionBenchOptions& options) {
     if (n < 4) throw InputError(locate("--vertices", "a polytope needs at least 4 vertices"));
     if (!options.quiet) std::cerr << "pairs N=" << n << ": exact reference...\n";
     const std::vector<PolytopePair> pairs =
-        collision::randomPolytopePairs(options.pairs, n, options.seed);
+        testing::randomPolytopePairs(options.pairs, n, options.seed);
     std::vector<double> truth;
     int overlapping = 0;
     for (const PolytopePair& pair : pairs) {
-      truth.push_back(collision::minkowskiReference(pair.worldA(), pair.worldB()).signedDistance);
+      truth.push_back(testing::minkowskiReference(pair.worldA(), pair.worldB()).signedDistance);
       overlapping += truth.back() <= 0.0 ? 1 : 0;
     }
     if (!options.quiet) std::cerr << "pairs N=" << n << ": timing...\n";
@@ -444,11 +449,9 @@ int runCollisionBench(const CollisionBenchOptions& options) {
   return 0;
 }
 
-VerbRunner setupBench(CLI::App& command) {
-  command.require_subcommand(1);
+VerbRunner setupCollision(CLI::App& command) {
   auto options = std::make_shared<CollisionBenchOptions>();
-  CLI::App* collision = command.add_subcommand(
-      "collision", "Narrow-phase collision queries: kaboum vs FCL 0.7, Bullet 3.24 and libccd");
+  CLI::App* collision = &command;
   collision->add_option("--pairs", options->pairs, "Random pairs per vertex count")
       ->capture_default_str();
   collision->add_option("--vertices", options->vertexCounts, "Vertex counts of the polytopes")
@@ -466,14 +469,14 @@ VerbRunner setupBench(CLI::App& command) {
   collision->add_option("--section", options->sections, sectionHelp);
   collision->add_flag("--json", options->json, "Print the results as JSON");
   collision->add_flag("--quiet", options->quiet, "No progress messages on stderr");
-  return [options, collision] {
-    if (collision->parsed()) return runCollisionBench(*options);
-    return 2;
-  };
+  return [options] { return runCollisionBench(*options); };
 }
 
 const VerbRegistration registration{
-    "bench", "Benchmarks against reference libraries on identical queries", setupBench};
+    "collision",
+    "Collision queries side by side: kaboum vs FCL 0.7, Bullet 3.24 and libccd on identical "
+    "convex pairs and full-robot checks",
+    setupCollision};
 
 }  // namespace
 }  // namespace kaboum::cli

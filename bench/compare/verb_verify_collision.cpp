@@ -1,4 +1,4 @@
-// `kaboum verify-collision`: differential check of the bounded collision predicate (Definition 1
+// `kaboum-compare verify-collision`: differential check of the bounded collision predicate (Definition 1
 // (1)) against FCL on the ORIGINAL triangle meshes, over random relative poses of real meshes.
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/math/bv/OBBRSS.h>
@@ -21,10 +21,18 @@
 #include "kaboum/geometry/triangle_bvh.hpp"
 #include "kaboum/io/mesh_io.hpp"
 #include "kaboum/kinematics/random_configuration.hpp"
+#include "kaboum/testing/data_paths.hpp"
 #include "mesh_cli.hpp"
 #include "verb.hpp"
 
 namespace kaboum::cli {
+
+using namespace kaboum::geometry;
+using namespace kaboum::kinematics;
+using namespace kaboum::io;
+using namespace kaboum::collision;
+using namespace kaboum::testing;
+
 namespace {
 
 using collision::CollisionBody;
@@ -41,13 +49,13 @@ struct VerifyOptions {
 // The KR5 and WAM link meshes of Debian's dart-doc package.
 std::vector<std::string> defaultMeshes() {
   std::vector<std::string> paths;
-  const std::string kr5 = "/usr/share/doc/dart/data/urdf/KR5/meshes/";
   for (const char* name : {"base_link", "shoulder", "bicep", "elbow", "forearm", "wrist", "palm"}) {
-    paths.push_back(kr5 + name + ".STL");
+    paths.push_back((testing::kr5MeshDir() / (std::string(name) + ".STL")).string());
   }
   for (int i = 1; i <= 7; ++i) {
-    paths.push_back("/usr/share/doc/dart/data/urdf/wam/meshes/wam/wam" + std::to_string(i) +
-                    ".STL");
+    paths.push_back(
+        (testing::dartUrdfDir() / "wam/meshes/wam" / ("wam" + std::to_string(i) + ".STL"))
+            .string());
   }
   return paths;
 }

@@ -11,6 +11,10 @@
 #include "kaboum/io/mesh_io.hpp"
 
 namespace kaboum {
+
+using namespace kaboum::io;
+using namespace kaboum::testing;
+
 namespace {
 
 using test::CliResult;

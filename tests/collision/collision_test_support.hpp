@@ -11,12 +11,16 @@
 #include <vector>
 
 #include "kaboum/collision/body.hpp"
-#include "kaboum/collision/minkowski_reference.hpp"
 #include "kaboum/kinematics/random_configuration.hpp"
+#include "kaboum/testing/data_paths.hpp"
+#include "kaboum/testing/minkowski_reference.hpp"
 
 namespace kaboum::collision::test {
 
-inline const std::string kKr5 = "/usr/share/doc/dart/data/urdf/KR5/KR5 sixx R650.urdf";
+using namespace kaboum::kinematics;
+using namespace kaboum::testing;
+
+inline const std::string kKr5 = kaboum::testing::kr5Urdf();
 
 inline Vec3 randomPoint(std::mt19937_64& rng, double halfWidth) {
   return halfWidth *

@@ -1,4 +1,4 @@
-// `kaboum bench collision`: the side-by-side report users and docs/benchmarks.md rely on, and
+// `kaboum-compare collision`: the side-by-side report users and docs/benchmarks.md rely on, and
 // its bad options.
 #include <gtest/gtest.h>
 
@@ -10,12 +10,15 @@
 #include "../support/test_support.hpp"
 
 namespace kaboum::test {
+
+using namespace kaboum::testing;
+
 namespace {
 
 TEST(BenchCli, ReportsEveryLibraryPerVertexCountAsJson) {
   const ScratchDir dir;
-  const CliResult result = runCli(
-      dir, "bench collision --pairs 40 --runs 1 --vertices 8 16 --section pairs --json --quiet");
+  const CliResult result = runCompare(
+      dir, "collision --pairs 40 --runs 1 --vertices 8 16 --section pairs --json --quiet");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_EQ(result.err, "");
   const auto json = nlohmann::json::parse(result.out);
@@ -39,8 +42,8 @@ TEST(BenchCli, ReportsEveryLibraryPerVertexCountAsJson) {
 // of the same-round ratios (a drift of the machine's speed reaches both sides of a ratio alike).
 TEST(BenchCli, RatiosAreMediansOfSameRoundRatios) {
   const ScratchDir dir;
-  const CliResult result = runCli(
-      dir, "bench collision --pairs 30 --runs 3 --vertices 8 --section pairs --json --quiet");
+  const CliResult result =
+      runCompare(dir, "collision --pairs 30 --runs 3 --vertices 8 --section pairs --json --quiet");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   const auto methods = nlohmann::json::parse(result.out).at("pairs").at("8").at("methods");
   const auto ours = methods.at("kaboum");
@@ -68,7 +71,7 @@ TEST(BenchCli, RatiosAreMediansOfSameRoundRatios) {
 TEST(BenchCli, FullRobotSectionAgreesWithFclAndReportsEveryStatistic) {
   const ScratchDir dir;
   const CliResult result =
-      runCli(dir, "bench collision --section robot --runs 1 --seed 2 --json --quiet");
+      runCompare(dir, "collision --section robot --runs 1 --seed 2 --json --quiet");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   const auto robot = nlohmann::json::parse(result.out).at("robot");
   EXPECT_EQ(robot.at("runs"), 1);
@@ -99,7 +102,7 @@ TEST(BenchCli, FullRobotSectionAgreesWithFclAndReportsEveryStatistic) {
 
 TEST(BenchCli, PrintsATableWithProgressOnStderr) {
   const ScratchDir dir;
-  const CliResult result = runCli(dir, "bench collision --pairs 20 --runs 1 --vertices 8");
+  const CliResult result = runCompare(dir, "collision --pairs 20 --runs 1 --vertices 8");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_NE(result.out.find("N=8 vertices: 20 pairs"), std::string::npos) << result.out;
   EXPECT_NE(result.out.find("fcl_libccd"), std::string::npos);
@@ -109,12 +112,12 @@ TEST(BenchCli, PrintsATableWithProgressOnStderr) {
 TEST(BenchCli, BadOptionsGiveOneLineAndExitCode2) {
   const ScratchDir dir;
   for (const char* arguments :
-       {"bench collision --pairs 0", "bench collision --runs 0", "bench collision --vertices 3",
-        "bench collision --section nosuch", "bench collision --pairs x", "bench", "bench nosuch"}) {
-    const CliResult result = runCli(dir, arguments);
+       {"collision --pairs 0", "collision --runs 0", "collision --vertices 3",
+        "collision --section nosuch", "collision --pairs x", "", "nosuch"}) {
+    const CliResult result = runCompare(dir, arguments);
     EXPECT_EQ(result.exitCode, 2) << arguments;
     EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << arguments << result.err;
-    EXPECT_EQ(result.err.rfind("kaboum: error: ", 0), 0U) << arguments << result.err;
+    EXPECT_EQ(result.err.rfind("kaboum-compare: error: ", 0), 0U) << arguments << result.err;
   }
 }
 

@@ -10,6 +10,9 @@
 #include "kaboum/kinematics/random_configuration.hpp"
 
 namespace kaboum::collision {
+
+using namespace kaboum::kinematics;
+
 namespace {
 
 Aabb randomBox(std::mt19937_64& rng, double size) {

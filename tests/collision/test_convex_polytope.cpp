@@ -11,12 +11,18 @@
 #include <vector>
 
 #include "kaboum/collision/convex_polytope.hpp"
-#include "kaboum/collision/polytope_pairs.hpp"
 #include "kaboum/core/error.hpp"
 #include "kaboum/geometry/convex_hull.hpp"
 #include "kaboum/io/mesh_io.hpp"
+#include "kaboum/testing/data_paths.hpp"
+#include "kaboum/testing/polytope_pairs.hpp"
 
 namespace kaboum::collision {
+
+using namespace kaboum::geometry;
+using namespace kaboum::io;
+using namespace kaboum::testing;
+
 namespace {
 
 double maxDot(const std::vector<Vec3>& points, const Vec3& direction) {
@@ -107,7 +113,7 @@ TEST(ConvexPolytope, InnerBallIsInsideAndBoundingSphereHoldsEveryVertex) {
     for (const PolytopePair& pair : randomPolytopePairs(30, n, 17)) shapes.push_back(pair.localA);
   }
   for (const char* name : {"kr5-wrist.stl", "kr5-base-link.stl", "wam2.stl"}) {
-    shapes.push_back(readMesh(std::string(KABOUM_DATA_DIR) + "/meshes/" + name).vertices);
+    shapes.push_back(readMesh(kaboum::testing::dataFile(std::string("meshes/") + name)).vertices);
   }
   for (const auto& points : shapes) {
     const ConvexPolytope polytope(points);
@@ -235,7 +241,7 @@ TEST(ConvexPolytope, TransformedSupportMatchesTransformedVertices) {
 
 TEST(ConvexPolytope, HullsOfRealRobotLinksSupportExactly) {
   for (const char* name : {"kr5-wrist.stl", "kr5-base-link.stl", "wam2.stl"}) {
-    const TriangleMesh mesh = readMesh(std::string(KABOUM_DATA_DIR) + "/meshes/" + name);
+    const TriangleMesh mesh = readMesh(kaboum::testing::dataFile(std::string("meshes/") + name));
     const ConvexPolytope polytope(mesh.vertices, name);
     // exercises hill climbing
     EXPECT_GT(polytope.vertexCount(), ConvexPolytope::kBruteForceMaxVertices) << name;

@@ -1,6 +1,6 @@
 // Differential test against FCL on the ORIGINAL triangle meshes (KR5 and WAM links): over random
-// relative poses, the bounded collision predicate misses no collision (`kaboum verify-collision`;
-// the full 10^6 run and its false-alarm figures are in docs/collision-scene.md).
+// relative poses, the bounded collision predicate misses no collision (`kaboum-compare
+// verify-collision`; the full 10^6 run and its false-alarm figures are in docs/collision-scene.md).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +11,9 @@
 #include "../support/test_support.hpp"
 
 namespace kaboum::collision {
+
+using namespace kaboum::testing;
+
 namespace {
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -21,7 +24,7 @@ constexpr int kSamples = 100000;
 
 TEST(FclDifferential, NoMissedCollisionOnRealMeshes) {
   const kaboum::test::ScratchDir dir;
-  const auto result = kaboum::test::runCli(
+  const auto result = kaboum::test::runCompare(
       dir, "verify-collision --samples " + std::to_string(kSamples) + " --seed 7 --json");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   const auto figures = nlohmann::json::parse(result.out);
@@ -45,7 +48,7 @@ TEST(FclDifferential, BadInputIsOneLineAndExitCode2) {
   for (const std::string& arguments :
        std::vector<std::string>{"verify-collision --samples 0", "verify-collision --reach-scale -1",
                                 "verify-collision --mesh '" + dir.file("missing.stl") + "'"}) {
-    const auto result = kaboum::test::runCli(dir, arguments);
+    const auto result = kaboum::test::runCompare(dir, arguments);
     EXPECT_EQ(result.exitCode, 2) << arguments;
     EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
   }

@@ -7,11 +7,16 @@
 
 #include "kaboum/collision/convex_polytope.hpp"
 #include "kaboum/collision/gjk.hpp"
-#include "kaboum/collision/minkowski_reference.hpp"
-#include "kaboum/collision/polytope_pairs.hpp"
 #include "kaboum/io/mesh_io.hpp"
+#include "kaboum/testing/data_paths.hpp"
+#include "kaboum/testing/minkowski_reference.hpp"
+#include "kaboum/testing/polytope_pairs.hpp"
 
 namespace kaboum::collision {
+
+using namespace kaboum::io;
+using namespace kaboum::testing;
+
 namespace {
 
 // The reference's own rounding (qhull planes, closest point on a triangle) on unit-size shapes.
@@ -392,7 +397,7 @@ TEST(Gjk, AnySupportMappingWorksSuchAsASweptPiece) {
 TEST(Gjk, HullsOfRealRobotLinksAgreeWithTheReference) {
   std::vector<std::vector<Vec3>> hulls;
   for (const char* name : {"kr5-wrist.stl", "kr5-base-link.stl", "wam2.stl"}) {
-    const TriangleMesh mesh = readMesh(std::string(KABOUM_DATA_DIR) + "/meshes/" + name);
+    const TriangleMesh mesh = readMesh(kaboum::testing::dataFile(std::string("meshes/") + name));
     const ConvexHull hull = convexHull(mesh.vertices, name);
     // Centered and scaled to unit size so the reference's tolerances apply.
     const Eigen::AlignedBox3d box(hull.mesh.vertices.front(), hull.mesh.vertices.front());

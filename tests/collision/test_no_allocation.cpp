@@ -8,13 +8,19 @@
 #include "collision_test_support.hpp"
 #include "kaboum/collision/convex_polytope.hpp"
 #include "kaboum/collision/gjk.hpp"
-#include "kaboum/collision/polytope_pairs.hpp"
 #include "kaboum/collision/predicates.hpp"
-#include "kaboum/collision/scene_generator.hpp"
 #include "kaboum/collision/swept.hpp"
-#include "kaboum/kinematics/urdf_loader.hpp"
+#include "kaboum/io/urdf_loader.hpp"
+#include "kaboum/testing/polytope_pairs.hpp"
+#include "kaboum/testing/robot_collision_models.hpp"
+#include "kaboum/testing/scene_generator.hpp"
 
 namespace kaboum::collision {
+
+using namespace kaboum::kinematics;
+using namespace kaboum::io;
+using namespace kaboum::testing;
+
 namespace {
 
 using kaboum::test::allocationsDuring;
@@ -45,7 +51,7 @@ TEST(NoAllocation, GjkQueries) {
 }
 
 TEST(NoAllocation, CollisionHotPaths) {
-  RobotCollisionModel robot(loadUrdf(test::kKr5));
+  RobotCollisionModel robot = kaboum::testing::robotCollisionModel(test::kKr5);
   const CollisionScene scene =
       randomObstacleScene(Aabb{Vec3(-0.8, -1.2, -0.8), Vec3(0.8, 0.4, 0.8)}, 50, 12, 0.04, 3);
   std::vector<Pose> poses(robot.model().links().size());

@@ -6,10 +6,17 @@
 #include "kaboum/collision/predicates.hpp"
 #include "kaboum/core/error.hpp"
 #include "kaboum/geometry/surface_sampling.hpp"
-#include "kaboum/geometry/test_shapes.hpp"
 #include "kaboum/io/mesh_io.hpp"
+#include "kaboum/testing/data_paths.hpp"
+#include "kaboum/testing/test_shapes.hpp"
 
 namespace kaboum::collision {
+
+using namespace kaboum::geometry;
+using namespace kaboum::kinematics;
+using namespace kaboum::io;
+using namespace kaboum::testing;
+
 namespace {
 
 using test::boxBody;
@@ -38,7 +45,7 @@ TEST(IsInside, BoxInTray) {
 // lies outside; and "inside" whenever the object is deep inside (exact beyond ε).
 TEST(IsInside, NeverInsideWhenASampledPointIsOutside) {
   // The cow, centred and scaled to a radius of 0.3.
-  TriangleMesh cow = readMesh(std::string(KABOUM_DATA_DIR) + "/meshes/cow.obj");
+  TriangleMesh cow = readMesh(kaboum::testing::dataFile("meshes/cow.obj"));
   Vec3 centre = Vec3::Zero();
   for (const Vec3& v : cow.vertices) centre += v / static_cast<double>(cow.vertices.size());
   double radius = 0;

@@ -7,9 +7,16 @@
 #include "kaboum/collision/scene.hpp"
 #include "kaboum/core/error.hpp"
 #include "kaboum/io/mesh_io.hpp"
-#include "kaboum/kinematics/urdf_loader.hpp"
+#include "kaboum/io/urdf_loader.hpp"
+#include "kaboum/testing/data_paths.hpp"
+#include "kaboum/testing/robot_collision_models.hpp"
 
 namespace kaboum::collision {
+
+using namespace kaboum::kinematics;
+using namespace kaboum::io;
+using namespace kaboum::testing;
+
 namespace {
 
 using test::boxBody;
@@ -114,7 +121,7 @@ TEST(CollisionScene, MovedObjectsAreFoundWhereTheyAre) {
 
 class Kr5Collision : public ::testing::Test {
  protected:
-  RobotCollisionModel robot{loadUrdf(test::kKr5)};
+  RobotCollisionModel robot = kaboum::testing::robotCollisionModel(test::kKr5);
   std::vector<Pose> poses = std::vector<Pose>(robot.model().links().size());
   std::vector<double> q = std::vector<double>(6, 0.0);
   int palm = *robot.model().findLink("palm");
@@ -183,7 +190,7 @@ TEST(RobotCollisionModel, PrimitiveShapesAreBounded) {
   cylinder.length = 0.5;
   cylinder.origin = randomPose(rng, 1.0);
   for (const CollisionShape& shape : {sphere, cylinder}) {
-    const auto pieces = shapeConvexPieces(shape);
+    const auto pieces = shapeConvexPieces(shape, {});
     ASSERT_EQ(pieces.size(), 1U);
     const ConvexHull hull = convexHull(pieces[0]);
     for (int i = 0; i < 2000; ++i) {
@@ -206,20 +213,37 @@ TEST(RobotCollisionModel, PrimitiveShapesAreBounded) {
 TEST(RobotCollisionModel, UnreadableLinkMeshIsAnInputError) {
   const std::string urdf = R"(<robot name="r"><link name="a"><collision><geometry>
       <mesh filename="missing.stl"/></geometry></collision></link></robot>)";
-  EXPECT_THROW(RobotCollisionModel(parseUrdf(urdf, "r.urdf", "/nonexistent")), InputError);
+  EXPECT_THROW(readCollisionMeshes(parseUrdf(urdf, "r.urdf", "/nonexistent")), InputError);
+}
+
+// Collision reads no files: a mesh shape whose mesh the caller did not supply is an InputError
+// that names the path.
+TEST(RobotCollisionModel, AMeshNotSuppliedIsAnInputErrorNamingIt) {
+  const std::string mesh = kaboum::testing::dataFile("meshes/kr5-wrist.stl");
+  const std::string urdf = R"(<robot name="r"><link name="a"><collision><geometry>
+      <mesh filename=")" + mesh +
+                           R"("/></geometry></collision></link></robot>)";
+  try {
+    const RobotCollisionModel robot(parseUrdf(urdf, "r.urdf", "."), {});
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(mesh + ": collision mesh not loaded"), std::string::npos)
+        << e.what();
+  }
 }
 
 // Link meshes through the bounding convex decomposition: several pieces whose union still holds
 // every vertex of the original mesh (in the link frame, after the collision origin).
 TEST(RobotCollisionModel, DecomposedLinksContainTheirMeshes) {
-  const std::string mesh = std::string(KABOUM_DATA_DIR) + "/meshes/kr5-wrist.stl";
+  const std::string mesh = kaboum::testing::dataFile("meshes/kr5-wrist.stl");
   const std::string urdf = R"(<robot name="r"><link name="wrist"><collision>
       <origin xyz="0.1 0 0" rpy="0 0.5 0"/><geometry><mesh filename=")" +
                            mesh + R"("/></geometry></collision></link></robot>)";
   LinkPieceOptions options;
   options.decompose = true;
   options.decomposition.epsilonPercent = 2;
-  const RobotCollisionModel robot(parseUrdf(urdf, "r.urdf", "."), options);
+  const RobotCollisionModel robot =
+      kaboum::testing::robotCollisionModel(parseUrdf(urdf, "r.urdf", "."), options);
   ASSERT_EQ(robot.partCount(), 1U);
   const CollisionBody& body = *robot.part(0).body;
   EXPECT_GT(body.pieceCount(), 1U);

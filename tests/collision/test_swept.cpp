@@ -4,9 +4,15 @@
 
 #include "collision_test_support.hpp"
 #include "kaboum/collision/swept.hpp"
-#include "kaboum/kinematics/urdf_loader.hpp"
+#include "kaboum/io/urdf_loader.hpp"
+#include "kaboum/testing/robot_collision_models.hpp"
 
 namespace kaboum::collision {
+
+using namespace kaboum::kinematics;
+using namespace kaboum::io;
+using namespace kaboum::testing;
+
 namespace {
 
 TEST(SweptSupport, IsTheSupportOfBothPoses) {
@@ -52,7 +58,7 @@ bool denseSamplingCollides(const RobotCollisionModel& robot, std::span<const dou
 }
 
 TEST(RobotSweep, DenseSamplingNeverFindsACollisionTheSweepCalledFree) {
-  RobotCollisionModel robot(loadUrdf(test::kKr5));
+  RobotCollisionModel robot = kaboum::testing::robotCollisionModel(test::kKr5);
   const int palm = *robot.model().findLink("palm");
   robot.attach(test::boxBody(Vec3(0, -0.02, -0.02), Vec3(0.25, 0.02, 0.02)), palm,
                Pose::Identity());
@@ -85,7 +91,7 @@ TEST(RobotSweep, DenseSamplingNeverFindsACollisionTheSweepCalledFree) {
 }
 
 TEST(RobotSweep, StepsShrinkWithEpsilonAndAStillRobotNeedsOne) {
-  const RobotCollisionModel robot(loadUrdf(test::kKr5));
+  const RobotCollisionModel robot = kaboum::testing::robotCollisionModel(test::kKr5);
   RobotSweep sweep(robot);
   const std::vector<double> qa{0, 0, 0, 0, 0, 0}, qb{1, -0.5, 0.5, 1, 1, 1};
   sweep.sweep(qa, qa, 0.001);
@@ -112,7 +118,7 @@ int firstSelfCollidingSample(const RobotCollisionModel& robot, std::span<const d
 
 // The KR5 with the pair its hulls overlap in at home (forearm and palm around the wrist) allowed.
 RobotCollisionModel kr5AllowingHomeOverlaps() {
-  RobotCollisionModel robot(loadUrdf(test::kKr5));
+  RobotCollisionModel robot = kaboum::testing::robotCollisionModel(test::kKr5);
   std::vector<Pose> poses(robot.model().links().size());
   robot.model().linkPoses(std::vector<double>(6, 0.0), poses);
   robot.allowPairsCollidingAt(poses);
@@ -174,7 +180,7 @@ TEST(RobotSweep, DenseSamplingNeverFindsASelfCollisionTheSweepCalledFree) {
 }
 
 TEST(RobotSweep, SelfCollisionFollowsTheFilter) {
-  RobotCollisionModel robot(loadUrdf(test::kKr5));
+  RobotCollisionModel robot = kaboum::testing::robotCollisionModel(test::kKr5);
   RobotSweep sweep(robot);
   // The elbow folds back onto the base between these two configurations.
   const std::vector<double> qa{0, 1.5, 0, 0, 0, 0}, qb{0, 1.5, 2.7, 0, 0, 0};
@@ -190,7 +196,8 @@ TEST(SweptVolumes, DenseSamplingNeverFindsACollisionTheSweepsCalledFree) {
   // Two KR5s facing each other 0.9 m apart; the volumes are compared regardless of timing.
   const RobotModel model = loadUrdf(test::kKr5);
   const Pose offset(Eigen::Translation3d(0.9, 0, 0) * Eigen::AngleAxisd(3.14159, Vec3::UnitY()));
-  RobotCollisionModel left(model), right(model);
+  RobotCollisionModel left = kaboum::testing::robotCollisionModel(model);
+  RobotCollisionModel right = kaboum::testing::robotCollisionModel(model);
   right.setBasePose(offset);
   RobotSweep sweepLeft(left), sweepRight(right);
   std::mt19937_64 rng(12);

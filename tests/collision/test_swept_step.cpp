@@ -7,14 +7,21 @@
 
 #include "kaboum/collision/swept_step.hpp"
 #include "kaboum/geometry/triangle_mesh.hpp"
+#include "kaboum/io/urdf_loader.hpp"
 #include "kaboum/kinematics/random_configuration.hpp"
-#include "kaboum/kinematics/urdf_loader.hpp"
+#include "kaboum/testing/data_paths.hpp"
 
 namespace kaboum::collision {
+
+using namespace kaboum::geometry;
+using namespace kaboum::kinematics;
+using namespace kaboum::io;
+using namespace kaboum::testing;
+
 namespace {
 
-const std::string kKr5 = "/usr/share/doc/dart/data/urdf/KR5/KR5 sixx R650.urdf";
-const std::string kComauLeft = std::string(KABOUM_DATA_DIR) + "/robots/comau-left.urdf";
+const std::string kKr5 = kaboum::testing::kr5Urdf();
+const std::string kComauLeft = kaboum::testing::dataFile("robots/comau-left.urdf");
 
 Vec3 randomDirection(std::mt19937_64& rng) {
   std::normal_distribution<double> normal;

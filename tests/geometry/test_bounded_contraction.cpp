@@ -8,7 +8,7 @@
 
 #include "kaboum/geometry/bounded_contraction.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 namespace {
 
 Vec3 randomUnit(std::mt19937_64& rng) {
@@ -134,4 +134,4 @@ TEST(BoundedContraction, NearParallelPlanesStayStable) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -16,24 +16,29 @@
 #include "kaboum/geometry/mesh_cleanup.hpp"
 #include "kaboum/geometry/mesh_comparison.hpp"
 #include "kaboum/geometry/separation_certificate.hpp"
-#include "kaboum/geometry/test_shapes.hpp"
 #include "kaboum/geometry/triangle_bvh.hpp"
 #include "kaboum/geometry/triangle_grid.hpp"
 #include "kaboum/io/mesh_io.hpp"
+#include "kaboum/testing/data_paths.hpp"
+#include "kaboum/testing/test_shapes.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
+
+using namespace kaboum::io;
+using namespace kaboum::testing;
+
 namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kRobots = "/usr/share/doc/dart/data/urdf";
+const fs::path kRobots = kaboum::testing::dartUrdfDir();
 
 // Closed shared meshes shipped in data/meshes, and every KR5/WAM link from dart-doc.
 std::vector<fs::path> realMeshes() {
-  std::vector<fs::path> paths = {fs::path(KABOUM_DATA_DIR) / "meshes/cow.obj",
-                                 fs::path(KABOUM_DATA_DIR) / "meshes/spot.obj",
-                                 fs::path(KABOUM_DATA_DIR) / "meshes/fandisk.obj",
-                                 fs::path(KABOUM_DATA_DIR) / "meshes/rocker-arm.obj"};
+  std::vector<fs::path> paths = {fs::path(kaboum::testing::dataFile("meshes/cow.obj")),
+                                 fs::path(kaboum::testing::dataFile("meshes/spot.obj")),
+                                 fs::path(kaboum::testing::dataFile("meshes/fandisk.obj")),
+                                 fs::path(kaboum::testing::dataFile("meshes/rocker-arm.obj"))};
   for (const fs::path& dir : {kRobots / "KR5/meshes", kRobots / "wam/meshes/wam"}) {
     for (const auto& entry : fs::directory_iterator(dir)) {
       const std::string name = entry.path().filename().string();
@@ -111,7 +116,7 @@ TEST(BoundingMesh, ClosedRealMeshesAreBoundedOnBothSidesAtSeveralTargets) {
 }
 
 TEST(BoundingMesh, ReachesTheVertexTargetOnSmoothClosedMeshes) {
-  const TriangleMesh mesh = loadOriented(fs::path(KABOUM_DATA_DIR) / "meshes/spot.obj");
+  const TriangleMesh mesh = loadOriented(fs::path(kaboum::testing::dataFile("meshes/spot.obj")));
   BoundingMeshOptions options;
   options.targetVertices = 293;
   const BoundingMeshResult result = simplifyBounding(mesh, options);
@@ -162,7 +167,8 @@ TEST(BoundingMesh, OpenMeshesKeepTheirBordersAndContainmentIsReportedUndefined) 
 }
 
 TEST(BoundingMesh, QuadricErrorLimitIsADistanceAndIsRespected) {
-  const TriangleMesh mesh = loadOriented(fs::path(KABOUM_DATA_DIR) / "meshes/rocker-arm.obj");
+  const TriangleMesh mesh =
+      loadOriented(fs::path(kaboum::testing::dataFile("meshes/rocker-arm.obj")));
   BoundingMeshOptions options;
   options.maxError = 0.01 * analyzeMesh(mesh).diagonal;
   const BoundingMeshResult result = simplifyBounding(mesh, options);
@@ -172,7 +178,8 @@ TEST(BoundingMesh, QuadricErrorLimitIsADistanceAndIsRespected) {
 }
 
 TEST(BoundingMesh, DistanceLimitHoldsAndShrinksLargeMeshesTenfold) {
-  const TriangleMesh mesh = loadOriented(fs::path(KABOUM_DATA_DIR) / "meshes/rocker-arm.obj");
+  const TriangleMesh mesh =
+      loadOriented(fs::path(kaboum::testing::dataFile("meshes/rocker-arm.obj")));
   const double epsilon = 0.01 * analyzeMesh(mesh).diagonal;
   HausdorffReport measured;
   const BoundingMeshResult result =
@@ -191,7 +198,7 @@ TEST(BoundingMesh, DistanceLimitHoldsAndShrinksLargeMeshesTenfold) {
 TEST(BoundingMesh, InnerDistanceSearchStaysInsideAndWithinTheLimit) {
   // Each run of the search goes on from the last one that fitted: the result must still be a
   // valid inner bound, within the limit, and simpler than the input.
-  const TriangleMesh mesh = loadOriented(fs::path(KABOUM_DATA_DIR) / "meshes/spot.obj");
+  const TriangleMesh mesh = loadOriented(fs::path(kaboum::testing::dataFile("meshes/spot.obj")));
   const double epsilon = 0.01 * analyzeMesh(mesh).diagonal;
   BoundingMeshOptions options;
   options.side = BoundSide::Inner;
@@ -209,7 +216,8 @@ TEST(BoundingMesh, InnerDistanceSearchStaysInsideAndWithinTheLimit) {
 }
 
 TEST(BoundingMesh, AtTenPercentTheDistanceStaysBelowOnePercentOfTheDiagonal) {
-  const TriangleMesh mesh = loadOriented(fs::path(KABOUM_DATA_DIR) / "meshes/rocker-arm.obj");
+  const TriangleMesh mesh =
+      loadOriented(fs::path(kaboum::testing::dataFile("meshes/rocker-arm.obj")));
   BoundingMeshOptions options;
   options.targetVertices = mesh.vertices.size() / 10;
   const BoundingMeshResult result = simplifyBounding(mesh, options);
@@ -219,7 +227,7 @@ TEST(BoundingMesh, AtTenPercentTheDistanceStaysBelowOnePercentOfTheDiagonal) {
 }
 
 TEST(BoundingMesh, AllQuadricMergesAndCostsKeepTheGuarantee) {
-  const TriangleMesh mesh = loadOriented(fs::path(KABOUM_DATA_DIR) / "meshes/cow.obj");
+  const TriangleMesh mesh = loadOriented(fs::path(kaboum::testing::dataFile("meshes/cow.obj")));
   for (const ContractionCost cost : {ContractionCost::Planes, ContractionCost::Triangles}) {
     for (const QuadricMerge merge :
          {QuadricMerge::Sum, QuadricMerge::Constant, QuadricMerge::Full}) {
@@ -237,7 +245,7 @@ TEST(BoundingMesh, AllQuadricMergesAndCostsKeepTheGuarantee) {
 }
 
 TEST(BoundingMesh, IsDeterministic) {
-  const TriangleMesh mesh = loadOriented(fs::path(KABOUM_DATA_DIR) / "meshes/fandisk.obj");
+  const TriangleMesh mesh = loadOriented(fs::path(kaboum::testing::dataFile("meshes/fandisk.obj")));
   BoundingMeshOptions options;
   options.targetVertices = 500;
   const BoundingMeshResult a = simplifyBounding(mesh, options);
@@ -267,7 +275,7 @@ TEST(BoundingMesh, LazyQueueGivesTheEagerQueuesResultBitForBit) {
         Case{"cow.obj", BoundSide::Inner, 0.2, noLimit, QuadricMerge::Sum},
         Case{"fandisk.obj", BoundSide::Outer, 0.0, 0.01, QuadricMerge::Constant},
         Case{"kr5-wrist.stl", BoundSide::Inner, 0.0, 0.02, QuadricMerge::Constant}}) {
-    const TriangleMesh mesh = loadOriented(fs::path(KABOUM_DATA_DIR) / "meshes" / k.mesh);
+    const TriangleMesh mesh = loadOriented(fs::path(kaboum::testing::dataFile("meshes")) / k.mesh);
     BoundingMeshOptions options;
     options.side = k.side;
     options.merge = k.merge;
@@ -414,4 +422,4 @@ TEST(SeparationCertificate, TriangleBoxesContainTheirCornersAtEveryScale) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::geometry

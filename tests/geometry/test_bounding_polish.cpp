@@ -12,8 +12,13 @@
 #include "kaboum/geometry/mesh_cleanup.hpp"
 #include "kaboum/geometry/mesh_comparison.hpp"
 #include "kaboum/io/mesh_io.hpp"
+#include "kaboum/testing/data_paths.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
+
+using namespace kaboum::io;
+using namespace kaboum::testing;
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -44,12 +49,12 @@ TriangleMesh boundAt(const TriangleMesh& mesh, BoundSide side, double ratio) {
   return simplifyBounding(mesh, options).mesh;
 }
 
-const fs::path kRobots = "/usr/share/doc/dart/data/urdf";
+const fs::path kRobots = kaboum::testing::dartUrdfDir();
 
 TEST(BoundingPolish, KeepsTheSideAndTheShapeAndRaisesNeitherMaximum) {
   std::size_t relocations = 0;
   const std::vector<fs::path> meshes = {
-      fs::path(KABOUM_DATA_DIR) / "meshes/spot.obj", kRobots / "KR5/meshes/forearm.STL",
+      fs::path(kaboum::testing::dataFile("meshes/spot.obj")), kRobots / "KR5/meshes/forearm.STL",
       kRobots / "KR5/meshes/palm.STL", kRobots / "wam/meshes/wam/wam_base.STL"};
   for (const fs::path& path : meshes) {
     const TriangleMesh mesh = loadOriented(path);
@@ -88,7 +93,7 @@ TEST(BoundingPolish, KeepsTheSideAndTheShapeAndRaisesNeitherMaximum) {
 // result→original). Algorithm 2 alone gives 2.13% / 3.43%, the sweeps 1.748% / 1.979%, the
 // relocations 1.363% / 1.928%.
 TEST(BoundingPolish, BringsTheCowsOuterTenPercentBoundBelowTheReference) {
-  const TriangleMesh mesh = loadOriented(fs::path(KABOUM_DATA_DIR) / "meshes/cow.obj");
+  const TriangleMesh mesh = loadOriented(fs::path(kaboum::testing::dataFile("meshes/cow.obj")));
   BoundingMeshOptions options;
   options.targetVertices = 291;
   options.polish = true;
@@ -132,7 +137,8 @@ TEST(BoundingPolish, OpenMeshBordersStayWhereTheyAre) {
 }
 
 TEST(BoundingPolish, IsDeterministic) {
-  const TriangleMesh mesh = loadOriented(fs::path(KABOUM_DATA_DIR) / "meshes/kr5-wrist.stl");
+  const TriangleMesh mesh =
+      loadOriented(fs::path(kaboum::testing::dataFile("meshes/kr5-wrist.stl")));
   const TriangleMesh before = boundAt(mesh, BoundSide::Outer, 0.1);
   TriangleMesh first = before, second = before;
   polishBoundingMesh(mesh, first, quickPolish(BoundSide::Outer));
@@ -142,4 +148,4 @@ TEST(BoundingPolish, IsDeterministic) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -12,15 +12,20 @@
 #include "kaboum/geometry/convex_decomposition.hpp"
 #include "kaboum/geometry/mesh_analysis.hpp"
 #include "kaboum/geometry/surface_sampling.hpp"
-#include "kaboum/geometry/test_shapes.hpp"
 #include "kaboum/geometry/triangle_bvh.hpp"
 #include "kaboum/io/mesh_io.hpp"
+#include "kaboum/testing/data_paths.hpp"
+#include "kaboum/testing/test_shapes.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
+
+using namespace kaboum::io;
+using namespace kaboum::testing;
+
 namespace {
 
 TriangleMesh dataMesh(const std::string& name) {
-  return readMesh(std::string(KABOUM_DATA_DIR) + "/meshes/" + name);
+  return readMesh(kaboum::testing::dataFile("meshes/" + name));
 }
 
 // Containment tolerance: pieces may lose points by a rounding-level snap (convex_decomposition).
@@ -343,4 +348,4 @@ TEST(ConvexDecomposition, BadInputIsAnInputError) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -5,9 +5,12 @@
 #include "kaboum/core/error.hpp"
 #include "kaboum/geometry/convex_hull.hpp"
 #include "kaboum/geometry/mesh_analysis.hpp"
-#include "kaboum/geometry/test_shapes.hpp"
+#include "kaboum/testing/test_shapes.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
+
+using namespace kaboum::testing;
+
 namespace {
 
 TEST(ConvexHull, CubeCornersAmongInteriorPointsGiveSixFacesAndVolumeEight) {
@@ -61,4 +64,4 @@ TEST(ConvexHull, DegenerateInputIsAnInputErrorNamingThePoints) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::geometry

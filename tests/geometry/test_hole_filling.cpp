@@ -9,10 +9,15 @@
 #include "kaboum/geometry/hole_filling.hpp"
 #include "kaboum/geometry/mesh_analysis.hpp"
 #include "kaboum/geometry/mesh_cleanup.hpp"
-#include "kaboum/geometry/test_shapes.hpp"
 #include "kaboum/io/mesh_io.hpp"
+#include "kaboum/testing/data_paths.hpp"
+#include "kaboum/testing/test_shapes.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
+
+using namespace kaboum::io;
+using namespace kaboum::testing;
+
 namespace {
 
 // Directed edges (a, b) whose count differs from that of (b, a): zero for a closed mesh.
@@ -108,7 +113,7 @@ TEST(HoleFilling, NonManifoldFinIsClosedInTheDirectedEdgeSense) {
 TEST(HoleFilling, OpenRobotLinksInDataBecomeClosedKeepingTheirSurfaceAndVolume) {
   for (const std::string name : {"kr5-base-link.stl", "wam2.stl", "wam2.dae"}) {
     SCOPED_TRACE(name);
-    TriangleMesh mesh = readMesh(std::string(KABOUM_DATA_DIR) + "/meshes/" + name);
+    TriangleMesh mesh = readMesh(kaboum::testing::dataFile(std::string("meshes/") + name));
     bool flipped = false;
     ASSERT_TRUE(orientOutward(mesh, flipped));
     const MeshAnalysis before = analyzeMesh(mesh);
@@ -127,7 +132,7 @@ TEST(HoleFilling, OpenRobotLinksInDataBecomeClosedKeepingTheirSurfaceAndVolume) 
 }
 
 TEST(HoleFilling, IsDeterministic) {
-  TriangleMesh a = readMesh(std::string(KABOUM_DATA_DIR) + "/meshes/kr5-base-link.stl");
+  TriangleMesh a = readMesh(kaboum::testing::dataFile("meshes/kr5-base-link.stl"));
   TriangleMesh b = a;
   fillHoles(a);
   fillHoles(b);
@@ -136,4 +141,4 @@ TEST(HoleFilling, IsDeterministic) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -9,7 +9,7 @@
 
 #include "kaboum/geometry/indexed_heap.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 namespace {
 
 TEST(IndexedMinHeap, MatchesASortedReferenceUnderRandomUpdates) {
@@ -62,4 +62,4 @@ TEST(IndexedMinHeap, MatchesASortedReferenceUnderRandomUpdates) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -6,12 +6,17 @@
 
 #include "kaboum/geometry/mesh_analysis.hpp"
 #include "kaboum/io/mesh_io.hpp"
+#include "kaboum/testing/data_paths.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
+
+using namespace kaboum::io;
+using namespace kaboum::testing;
+
 namespace {
 
 TriangleMesh dataMesh(const std::string& name) {
-  return readMesh(std::string(KABOUM_DATA_DIR) + "/meshes/" + name);
+  return readMesh(kaboum::testing::dataFile("meshes/" + name));
 }
 
 TriangleMesh reversed(TriangleMesh mesh) {
@@ -220,4 +225,4 @@ TEST(FindEdgeNeighbors, PairsEveryCubeEdge) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::geometry

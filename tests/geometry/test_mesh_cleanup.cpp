@@ -7,12 +7,17 @@
 #include "kaboum/geometry/mesh_analysis.hpp"
 #include "kaboum/geometry/mesh_cleanup.hpp"
 #include "kaboum/io/mesh_io.hpp"
+#include "kaboum/testing/data_paths.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
+
+using namespace kaboum::io;
+using namespace kaboum::testing;
+
 namespace {
 
 TriangleMesh dataMesh(const std::string& name) {
-  return readMesh(std::string(KABOUM_DATA_DIR) + "/meshes/" + name);
+  return readMesh(kaboum::testing::dataFile("meshes/" + name));
 }
 
 // Every triangle with its own three vertices, as STL stores it.
@@ -203,4 +208,4 @@ TEST(RepairOrientation, NonManifoldComponentStaysWhileOthersAreRepaired) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::geometry

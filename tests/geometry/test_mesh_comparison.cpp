@@ -10,10 +10,13 @@
 #include "kaboum/core/error.hpp"
 #include "kaboum/geometry/mesh_comparison.hpp"
 #include "kaboum/geometry/surface_sampling.hpp"
-#include "kaboum/geometry/test_shapes.hpp"
 #include "kaboum/geometry/triangle_bvh.hpp"
+#include "kaboum/testing/test_shapes.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
+
+using namespace kaboum::testing;
+
 namespace {
 
 constexpr std::size_t kRandomSamples = 3000;
@@ -337,4 +340,4 @@ TEST(CountSelfIntersections, FindsFoldsThroughASharedVertex) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -6,10 +6,15 @@
 #include "kaboum/geometry/convex_hull.hpp"
 #include "kaboum/geometry/mesh_analysis.hpp"
 #include "kaboum/geometry/quick_hull.hpp"
-#include "kaboum/geometry/test_shapes.hpp"
 #include "kaboum/io/mesh_io.hpp"
+#include "kaboum/testing/data_paths.hpp"
+#include "kaboum/testing/test_shapes.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
+
+using namespace kaboum::io;
+using namespace kaboum::testing;
+
 namespace {
 
 constexpr double kTolerance = 1e-10;
@@ -76,7 +81,7 @@ TEST(QuickHull, MatchesQhullOnRandomAndRealPointSets) {
     expectHullOf(box, "box faces " + std::to_string(n));
     if (n > 5) expectHullOf(grid, "grid " + std::to_string(n));
   }
-  const TriangleMesh wrist = readMesh(std::string(KABOUM_DATA_DIR) + "/meshes/kr5-wrist.stl");
+  const TriangleMesh wrist = readMesh(kaboum::testing::dataFile("meshes/kr5-wrist.stl"));
   expectHullOf(wrist.vertices, "KR5 wrist");
   const MeshAnalysis analysis = analyzeMesh(wrist);
   for (const double fraction : {0.3, 0.5, 0.7}) {
@@ -140,4 +145,4 @@ TEST(QuickHull, PointsWithoutVolumeGiveNoHull) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::geometry

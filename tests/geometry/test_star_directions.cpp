@@ -8,7 +8,7 @@
 #include "kaboum/geometry/star_directions.hpp"
 #include "kaboum/geometry/triangle_grid.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 namespace {
 
 bool inside(const Box3& box, const Vec3& d) {
@@ -109,4 +109,4 @@ TEST(TriangleGrid, AnyNearSeesExactlyTheOccupiedCells) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::geometry

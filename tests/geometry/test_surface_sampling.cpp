@@ -1,10 +1,13 @@
 #include <gtest/gtest.h>
 
 #include "kaboum/geometry/surface_sampling.hpp"
-#include "kaboum/geometry/test_shapes.hpp"
 #include "kaboum/geometry/triangle_bvh.hpp"
+#include "kaboum/testing/test_shapes.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
+
+using namespace kaboum::testing;
+
 namespace {
 
 TEST(SampleSurface, VerticesThenEdgeMidpointsThenRandomPoints) {
@@ -120,4 +123,4 @@ TEST(SurfaceSampler, ResumesWhereItStopped) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -11,10 +11,13 @@
 #include <string>
 
 #include "kaboum/core/error.hpp"
-#include "kaboum/geometry/test_shapes.hpp"
 #include "kaboum/geometry/triangle_bvh.hpp"
+#include "kaboum/testing/test_shapes.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
+
+using namespace kaboum::testing;
+
 namespace {
 
 const Vec3& corner(const TriangleMesh& mesh, std::size_t triangle, std::size_t k) {
@@ -633,4 +636,4 @@ TEST(TriangleBvh, OverlapQueryVisitsEveryOverlappingTriangle) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -12,11 +12,16 @@
 #include "kaboum/core/error.hpp"
 #include "kaboum/geometry/triangle_mesh.hpp"
 #include "kaboum/io/mesh_io.hpp"
+#include "kaboum/testing/data_paths.hpp"
 
 namespace kaboum::test {
 
+using namespace kaboum::geometry;
+using namespace kaboum::io;
+using namespace kaboum::testing;
+
 inline std::string meshData(const std::string& name) {
-  return std::string(KABOUM_DATA_DIR) + "/meshes/" + name;
+  return kaboum::testing::dataFile("meshes/" + name);
 }
 
 // The message readMesh(path) throws as InputError, or "" when it reads the mesh.

@@ -9,7 +9,11 @@
 #include "io_test_support.hpp"
 #include "kaboum/geometry/mesh_analysis.hpp"
 
-namespace kaboum {
+namespace kaboum::io {
+
+using namespace kaboum::geometry;
+using namespace kaboum::testing;
+
 namespace {
 
 using test::meshData;
@@ -108,4 +112,4 @@ TEST(InfoCli, MissingArgumentIsAUsageError) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::io

@@ -11,7 +11,11 @@
 #include "io_test_support.hpp"
 #include "kaboum/geometry/mesh_analysis.hpp"
 
-namespace kaboum {
+namespace kaboum::io {
+
+using namespace kaboum::geometry;
+using namespace kaboum::testing;
+
 namespace {
 
 using test::expectReadError;
@@ -432,4 +436,4 @@ TEST(BadInput, DamagedFilesNeverCrash) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::io

@@ -8,8 +8,13 @@
 
 #include "io_test_support.hpp"
 #include "kaboum/geometry/mesh_analysis.hpp"
+#include "kaboum/testing/data_paths.hpp"
 
-namespace kaboum {
+namespace kaboum::io {
+
+using namespace kaboum::geometry;
+using namespace kaboum::testing;
+
 namespace {
 
 using test::expectReadError;
@@ -138,15 +143,15 @@ TEST(Vrml, CopiedScenarioTabletopHasTheDocumentedSize) {
   EXPECT_TRUE(table.outwardOriented);
 }
 
-// Every VRML file of ../shared/scenarios/bimanual-assembly loads, except three that cannot:
+// Every VRML file of the shared bimanual-assembly scenario loads, except three that cannot:
 // frame.wrl holds only lines, and static.wrl (so scene.wrl) inlines the table-only.wrl that the
 // scenario snapshot does not include.
 TEST(Vrml, EveryScenarioFileLoadsOrSaysWhyNot) {
-  const std::filesystem::path scenario =
-      std::filesystem::path(KABOUM_DATA_DIR) / "../../shared/scenarios/bimanual-assembly";
-  if (!std::filesystem::exists(scenario / "scene.wrl")) {
-    GTEST_SKIP() << "no " << scenario << " (optional; the copied files are tested above)";
+  const auto shared = kaboum::testing::sharedDir();
+  if (!shared || !std::filesystem::exists(*shared / "scenarios/bimanual-assembly/scene.wrl")) {
+    GTEST_SKIP() << "no shared scenario folder (optional; the copied files are tested above)";
   }
+  const std::filesystem::path scenario = *shared / "scenarios/bimanual-assembly";
   const std::map<std::string, std::string> expectedErrors{
       {"frame.wrl", "empty mesh: no faces"},
       {"static.wrl", "Inline file not found: 'table-only.wrl'"},
@@ -238,4 +243,4 @@ TEST(VrmlBadInput, InlineCycleAndErrorsInsideInlinedFiles) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::io

@@ -3,11 +3,15 @@
 #include <cmath>
 #include <numbers>
 
+#include "kaboum/io/urdf_loader.hpp"
 #include "kaboum/kinematics/arm_ik.hpp"
-#include "kaboum/kinematics/urdf_loader.hpp"
 #include "robots.hpp"
 
-namespace kaboum {
+namespace kaboum::kinematics {
+
+using namespace kaboum::io;
+using namespace kaboum::testing;
+
 namespace {
 
 bool posesClose(const Pose& a, const Pose& b, double tolerance) {
@@ -187,4 +191,4 @@ TEST(ArmIk, WamDoesNotFitAndUnreachableTargetsHaveNoSolution) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

@@ -13,7 +13,10 @@
 
 #include "robots.hpp"
 
-namespace kaboum {
+namespace kaboum::kinematics {
+
+using namespace kaboum::testing;
+
 namespace {
 
 struct CliRun {
@@ -130,4 +133,4 @@ TEST(CliErrors, BadInputIsOneLineAndExitCodeTwo) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

@@ -4,12 +4,16 @@
 #include <numbers>
 
 #include "kaboum/core/error.hpp"
+#include "kaboum/io/urdf_loader.hpp"
 #include "kaboum/kinematics/constraint_problem.hpp"
 #include "kaboum/kinematics/constraint_sampler.hpp"
-#include "kaboum/kinematics/urdf_loader.hpp"
 #include "robots.hpp"
 
-namespace kaboum {
+namespace kaboum::kinematics {
+
+using namespace kaboum::io;
+using namespace kaboum::testing;
+
 namespace {
 
 using Kind = PrimitiveShape::Kind;
@@ -260,4 +264,4 @@ TEST(ConstraintSampler, BimanualConstraintBetweenTwoTools) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

@@ -5,15 +5,20 @@
 #include <numbers>
 
 #include "kaboum/core/error.hpp"
+#include "kaboum/io/urdf_loader.hpp"
 #include "kaboum/kinematics/arm_ik.hpp"
 #include "kaboum/kinematics/numeric_ik.hpp"
-#include "kaboum/kinematics/urdf_loader.hpp"
+#include "kaboum/testing/data_paths.hpp"
 #include "robots.hpp"
 
-namespace kaboum {
+namespace kaboum::kinematics {
+
+using namespace kaboum::io;
+using namespace kaboum::testing;
+
 namespace {
 
-const std::string kExamples = std::string(KABOUM_DATA_DIR) + "/../examples/robots/";
+const std::string kExamples = kaboum::testing::exampleFile("robots/");
 
 // Random configurations → FK → closed-form IK finds the configuration again.
 void expectRoundTrips(const KinematicChain& chain, const ArmIk& ik, std::uint64_t seed) {
@@ -83,4 +88,4 @@ TEST(ExampleRobots, ChainBaseMustBeAnAncestorOfTheTip) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

@@ -6,12 +6,16 @@
 #include <cmath>
 #include <numbers>
 
+#include "kaboum/io/urdf_loader.hpp"
 #include "kaboum/kinematics/arm_ik.hpp"
 #include "kaboum/kinematics/constraint_sampler.hpp"
-#include "kaboum/kinematics/urdf_loader.hpp"
 #include "robots.hpp"
 
-namespace kaboum {
+namespace kaboum::kinematics {
+
+using namespace kaboum::io;
+using namespace kaboum::testing;
+
 namespace {
 
 using Shape = PrimitiveShape;
@@ -151,4 +155,4 @@ TEST(Figure54, GraspingACylinderRimCoversAllGraspAngles) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

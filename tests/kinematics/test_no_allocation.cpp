@@ -5,13 +5,17 @@
 #include <numbers>
 
 #include "../support/allocation_counter.hpp"
+#include "kaboum/io/urdf_loader.hpp"
 #include "kaboum/kinematics/arm_ik.hpp"
 #include "kaboum/kinematics/constraint_sampler.hpp"
 #include "kaboum/kinematics/numeric_ik.hpp"
-#include "kaboum/kinematics/urdf_loader.hpp"
 #include "robots.hpp"
 
-namespace kaboum {
+namespace kaboum::kinematics {
+
+using namespace kaboum::io;
+using namespace kaboum::testing;
+
 namespace {
 
 using kaboum::test::allocationsDuring;
@@ -51,4 +55,4 @@ TEST(NoAllocation, KinematicsHotPaths) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

@@ -1,10 +1,14 @@
 #include <gtest/gtest.h>
 
+#include "kaboum/io/urdf_loader.hpp"
 #include "kaboum/kinematics/numeric_ik.hpp"
-#include "kaboum/kinematics/urdf_loader.hpp"
 #include "robots.hpp"
 
-namespace kaboum {
+namespace kaboum::kinematics {
+
+using namespace kaboum::io;
+using namespace kaboum::testing;
+
 namespace {
 
 // Random reachable poses of the 7-DOF WAM (FK of random configurations) are solved from random
@@ -60,4 +64,4 @@ TEST(NumericIk, ReportsUnreachableTargets) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

@@ -4,11 +4,15 @@
 #include <numbers>
 
 #include "kaboum/core/error.hpp"
+#include "kaboum/io/urdf_loader.hpp"
 #include "kaboum/kinematics/kinematic_chain.hpp"
-#include "kaboum/kinematics/urdf_loader.hpp"
 #include "robots.hpp"
 
-namespace kaboum {
+namespace kaboum::kinematics {
+
+using namespace kaboum::io;
+using namespace kaboum::testing;
+
 namespace {
 
 using test::kComauLeft;
@@ -144,4 +148,4 @@ TEST(KinematicChain, UnknownTipIsAnInputError) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

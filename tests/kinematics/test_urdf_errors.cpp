@@ -6,7 +6,7 @@
 #include <fstream>
 
 #include "kaboum/core/error.hpp"
-#include "kaboum/kinematics/urdf_loader.hpp"
+#include "kaboum/io/urdf_loader.hpp"
 
 // urdfdom 3.0.1 leaks the links of a cyclic joint graph when it rejects it (the links own each
 // other through child_links); the "cycle.urdf" case below triggers that, so LeakSanitizer is
@@ -15,7 +15,10 @@ extern "C" const char* __lsan_default_suppressions() {
   return "leak:urdf::parseURDF\n";
 }
 
-namespace kaboum {
+namespace kaboum::kinematics {
+
+using namespace kaboum::io;
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -130,4 +133,4 @@ TEST(UrdfErrors, MissingMeshFiles) {
 }
 
 }  // namespace
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

@@ -12,7 +12,11 @@
 #include <iterator>
 #include <string>
 
+#include "kaboum/testing/data_paths.hpp"
+
 namespace kaboum::test {
+
+using namespace kaboum::testing;
 
 // A fresh directory under the system temp directory, removed with everything in it at scope end.
 class ScratchDir {
@@ -53,11 +57,12 @@ struct CliResult {
   std::string out, err;
 };
 
-// Runs `kaboum ARGUMENTS` (arguments are passed to the shell as written), capturing its output in
+// Runs `PROGRAM ARGUMENTS` (arguments are passed to the shell as written), capturing its output in
 // `dir`.
-inline CliResult runCli(const ScratchDir& dir, const std::string& arguments) {
-  const std::string command = std::string("'") + KABOUM_CLI + "' " + arguments + " >'" +
-                              dir.file("out.txt") + "' 2>'" + dir.file("err.txt") + "'";
+inline CliResult runProgram(const std::string& program, const ScratchDir& dir,
+                            const std::string& arguments) {
+  const std::string command = "'" + program + "' " + arguments + " >'" + dir.file("out.txt") +
+                              "' 2>'" + dir.file("err.txt") + "'";
   const int status = std::system(command.c_str());
   CliResult result;
   result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -66,9 +71,19 @@ inline CliResult runCli(const ScratchDir& dir, const std::string& arguments) {
   return result;
 }
 
+// Runs the `kaboum` tool.
+inline CliResult runCli(const ScratchDir& dir, const std::string& arguments) {
+  return runProgram(KABOUM_CLI, dir, arguments);
+}
+
+// Runs the `kaboum-compare` benchmark program (kaboum against FCL, Bullet and libccd).
+inline CliResult runCompare(const ScratchDir& dir, const std::string& arguments) {
+  return runProgram(KABOUM_COMPARE, dir, arguments);
+}
+
 // Path of a mesh copied into the repo's data/meshes/, single-quoted for a CLI command line.
 inline std::string quotedMesh(const std::string& name) {
-  return "'" + std::string(KABOUM_DATA_DIR) + "/meshes/" + name + "'";
+  return "'" + kaboum::testing::dataFile("meshes/" + name) + "'";
 }
 
 // Number of lines in `text` (newline characters).

@@ -9,6 +9,8 @@
 
 namespace kaboum::symbolic::testing {
 
+using namespace kaboum::testing;
+
 CommandResult runCli(const std::string& arguments) {
   CommandResult result;
   const std::string command = std::string(KABOUM_CLI) + " " + arguments + " 2>&1";

@@ -9,11 +9,14 @@
 
 #include "kaboum/symbolic/planner.hpp"
 #include "kaboum/symbolic/validator.hpp"
+#include "kaboum/testing/data_paths.hpp"
 
 namespace kaboum::symbolic::testing {
 
+using namespace kaboum::testing;
+
 inline std::string pddlPath(const std::string& relative) {
-  return std::string(KABOUM_DATA_DIR) + "/pddl/" + relative;
+  return kaboum::testing::dataFile("pddl/" + relative);
 }
 
 // A domain/problem pair under data/pddl.
@@ -39,7 +42,7 @@ inline PlanReport planAndValidate(const Domain& domain, const Problem& problem,
                                   const SearchOptions& options,
                                   const ProcedureRegistry& procedures = {}) {
   PlanReport report = plan(domain, problem, procedures, options);
-  if (report.search.status == SearchStatus::Solved) {
+  if (report.search.status == PlannerStatus::Solved) {
     std::string text;
     for (const std::string& step : report.plan) text += step + "\n";
     const std::vector<PlanStep> steps = parsePlan(text, "plan", domain, problem);

@@ -7,14 +7,18 @@
 
 #include "kaboum/core/error.hpp"
 #include "kaboum/symbolic/sexpr.hpp"
+#include "kaboum/testing/data_paths.hpp"
 #include "symbolic_test_support.hpp"
 
 namespace kaboum::symbolic {
+
+using namespace kaboum::testing;
+
 namespace {
 
 using testing::planAndValidate;
 
-const std::string kExamples = std::string(KABOUM_DATA_DIR) + "/../examples/attachments";
+const std::string kExamples = kaboum::testing::exampleFile("attachments");
 
 // The grid domain of the example, with procedures named for code registration.
 std::string registeredGridDomain() {
@@ -65,7 +69,7 @@ TEST(Attachments, ProceduresRegisteredInCode) {
   SearchOptions options;
   options.mode = "bfs";
   const PlanReport report = planAndValidate(domain, problem, options, mazeProcedures());
-  ASSERT_EQ(report.search.status, SearchStatus::Solved);
+  ASSERT_EQ(report.search.status, PlannerStatus::Solved);
   // Down to the key (3), then around the wall and up: east 3, north 3.
   EXPECT_EQ(report.plan.size(), 3u + 1u + 3u + 3u);
   ASSERT_EQ(report.modules.size(), 3u);
@@ -85,7 +89,7 @@ TEST(Attachments, UnsolvableWhenTheProcedureBlocksEveryPath) {
   SearchOptions options;
   options.mode = "bfs";
   EXPECT_EQ(plan(domain, problem, mazeProcedures(), options).search.status,
-            SearchStatus::Unsolvable);
+            PlannerStatus::Unsolvable);
 }
 
 // Builds examples/attachments/grid_procedures.cpp into `dir` with the system compiler.
@@ -110,11 +114,11 @@ TEST(Attachments, ProceduresLoadedFromASharedLibrary) {
   SearchOptions options;
   options.mode = "bfs";
   const PlanReport report = planAndValidate(domain, problem, options);
-  ASSERT_EQ(report.search.status, SearchStatus::Solved);
+  ASSERT_EQ(report.search.status, PlannerStatus::Solved);
   EXPECT_EQ(report.plan.size(), 24u);
   EXPECT_EQ(report.plan[0], "(move south)");
   SearchOptions greedy;
-  EXPECT_EQ(planAndValidate(domain, problem, greedy).search.status, SearchStatus::Solved);
+  EXPECT_EQ(planAndValidate(domain, problem, greedy).search.status, PlannerStatus::Solved);
   std::filesystem::remove_all(dir);
 }
 

@@ -10,6 +10,9 @@
 #include "symbolic_test_support.hpp"
 
 namespace kaboum::symbolic {
+
+using namespace kaboum::testing;
+
 namespace {
 
 using testing::pddlPath;

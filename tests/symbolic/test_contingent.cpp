@@ -3,14 +3,19 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 
 #include "kaboum/core/error.hpp"
+#include "kaboum/scenarios/force_sensing.hpp"
+#include "kaboum/scenarios/toy_geometry.hpp"
 #include "kaboum/symbolic/contingent.hpp"
-#include "kaboum/symbolic/force_sensing.hpp"
-#include "kaboum/symbolic/toy_geometry.hpp"
 #include "symbolic_test_support.hpp"
 
 namespace kaboum::symbolic {
+
+using namespace kaboum::scenarios;
+using namespace kaboum::testing;
+
 namespace {
 
 using testing::pddlPath;
@@ -36,7 +41,7 @@ std::string errorOf(const std::string& domain, const std::string& problem) {
 // Solves, validates every branch of the printed tree and returns the result.
 ContingentResult solveAndValidate(KnowledgeTask& task, const ContingentOptions& options = {}) {
   ContingentResult result = solveContingent(task, options);
-  if (result.status == SearchStatus::Solved) {
+  if (result.status == PlannerStatus::Solved) {
     const std::string text = formatPlanTree(task, result.plan);
     const PlanTree parsed = parsePlanTree(text, "plan", task);
     const TreeValidation validation = validatePlanTree(task, parsed, "plan");
@@ -96,7 +101,7 @@ TEST(Knowledge, ClassicalProblemIsTheClosedWorldSpecialCase) {
   KnowledgeTask task(contingent, ProcedureRegistry{});
   EXPECT_EQ(task.initialBelief().size(), 1u);
   const ContingentResult result = solveAndValidate(task);
-  ASSERT_EQ(result.status, SearchStatus::Solved);
+  ASSERT_EQ(result.status, PlannerStatus::Solved);
   const TreeMetrics metrics = measure(result.plan);
   EXPECT_EQ(metrics.leaves, 1.0);
   EXPECT_EQ(metrics.branches, 0.0);
@@ -131,7 +136,7 @@ TEST(Knowledge, ConstantsMayComeBeforeTheirTypes) {
   KnowledgeTask task(contingent, ProcedureRegistry{});
   EXPECT_EQ(task.initialBelief().size(), 2u);
   const ContingentResult result = solveAndValidate(task);
-  ASSERT_EQ(result.status, SearchStatus::Solved);
+  ASSERT_EQ(result.status, PlannerStatus::Solved);
   EXPECT_EQ(measure(result.plan).leaves, 2.0);
 }
 
@@ -153,7 +158,7 @@ TEST(Knowledge, KvQueriesOnFunctionValues) {
   EXPECT_FALSE(task.applicable(logA, task.initialBelief()));  // weight of a unknown
   EXPECT_TRUE(task.applicable(logB, task.initialBelief()));   // weight of b is known (3)
   const ContingentResult result = solveAndValidate(task);
-  ASSERT_EQ(result.status, SearchStatus::Solved);
+  ASSERT_EQ(result.status, PlannerStatus::Solved);
   const std::string text = formatPlanTree(task, result.plan);
   EXPECT_LT(text.find("(weigh a)"), text.find("(log a)")) << text;
 }
@@ -237,7 +242,7 @@ TEST(KnowledgeOperators, ForgottenAtomIsSensedAgainInTheSolvedPlan) {
   const ContingentProblem contingent = staleProblem("(clean)", "(served)");
   KnowledgeTask task(contingent, ProcedureRegistry{});
   const ContingentResult result = solveAndValidate(task);
-  ASSERT_EQ(result.status, SearchStatus::Solved);
+  ASSERT_EQ(result.status, PlannerStatus::Solved);
   const std::string text = formatPlanTree(task, result.plan);
   EXPECT_NE(text.find("(inspect)"), std::string::npos) << text;
   EXPECT_NE(text.find("(wipe)"), std::string::npos) << text;
@@ -248,7 +253,7 @@ TEST(KnowledgeOperators, ForgottenAtomIsSensedAgainInTheSolvedPlan) {
   KnowledgeTask forgetTask(forget, ProcedureRegistry{});
   EXPECT_FALSE(forgetTask.isGoal(forgetTask.initialBelief()));
   const ContingentResult forgotten = solveAndValidate(forgetTask);
-  ASSERT_EQ(forgotten.status, SearchStatus::Solved);
+  ASSERT_EQ(forgotten.status, PlannerStatus::Solved);
   EXPECT_EQ(formatPlanTree(forgetTask, forgotten.plan).find("(wait)") != std::string::npos, true);
 }
 
@@ -316,7 +321,7 @@ TEST(KvSensing, BranchesOncePerPossibleValue) {
   EXPECT_FALSE(task.pendingValue(equal, pending, value));  // one value left: known
 
   const ContingentResult result = solveAndValidate(task);
-  ASSERT_EQ(result.status, SearchStatus::Solved);
+  ASSERT_EQ(result.status, PlannerStatus::Solved);
   const std::string text = formatPlanTree(task, result.plan);
   const TreeMetrics metrics = measure(result.plan);
   EXPECT_EQ(metrics.leaves, 3.0) << text;  // weights 1, 4 and 9
@@ -330,7 +335,7 @@ TEST(KvSensing, ExecutionFollowsTheSensedValueAndTheValidatorNeedsKv) {
   const ContingentProblem contingent = parseTexts(kScaleDomain, kScaleProblem);
   KnowledgeTask task(contingent, ProcedureRegistry{});
   const ContingentResult result = solveContingent(task, {});
-  ASSERT_EQ(result.status, SearchStatus::Solved);
+  ASSERT_EQ(result.status, PlannerStatus::Solved);
   for (const char* content : {"small", "medium", "big"}) {
     const std::vector<HiddenState> hidden =
         parseHidden(std::string("(:hidden (") + content + " b1))", "h", contingent);
@@ -364,7 +369,7 @@ TEST(ForceSensing, TwoContainersGiveTheBranchedPlanOfFigure32) {
   KnowledgeTask task(contingent, ProcedureRegistry{});
   EXPECT_EQ(task.initialBelief().size(), 4u);
   const ContingentResult result = solveAndValidate(task);
-  ASSERT_EQ(result.status, SearchStatus::Solved);
+  ASSERT_EQ(result.status, PlannerStatus::Solved);
   const TreeMetrics metrics = measure(result.plan);
   EXPECT_EQ(metrics.leaves, 4.0);  // one leaf per spillable/empty combination
   EXPECT_EQ(metrics.branches, 3.0);
@@ -386,7 +391,7 @@ TEST(ForceSensing, ExecutionFollowsTheSensedBranch) {
       parseContingent(forceSensingDomain(), "fs-domain", forceSensingProblem(2), "fs-2");
   KnowledgeTask task(contingent, ProcedureRegistry{});
   const ContingentResult result = solveContingent(task, {});
-  ASSERT_EQ(result.status, SearchStatus::Solved);
+  ASSERT_EQ(result.status, PlannerStatus::Solved);
   // Figure 3.2: o1 is spillable, o2 is empty.
   const auto hidden =
       parseHidden("(define (problem h) (:hidden (isspillable o1)))", "hidden", contingent);
@@ -407,11 +412,33 @@ TEST(ForceSensing, ScalesToTenContainers) {
       parseContingent(forceSensingDomain(), "fs-domain", forceSensingProblem(10), "fs-10");
   KnowledgeTask task(contingent, ProcedureRegistry{});
   const ContingentResult result = solveContingent(task, {});
-  ASSERT_EQ(result.status, SearchStatus::Solved);
+  ASSERT_EQ(result.status, PlannerStatus::Solved);
   const TreeMetrics metrics = measure(result.plan);
   EXPECT_EQ(metrics.leaves, 1024.0);
   EXPECT_EQ(metrics.depth, 40u);
   EXPECT_TRUE(validatePlanTree(task, result.plan, "plan").valid);
+}
+
+TEST(ForceSensing, SearchEndsWithTheStatusOfTheLimitReached) {
+  const ContingentProblem contingent =
+      parseContingent(forceSensingDomain(), "fs-domain", forceSensingProblem(8), "fs-8");
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  ContingentOptions nodes;
+  nodes.limits.expansions = 5;
+  const ContingentResult limited = solveContingent(task, nodes);
+  EXPECT_EQ(limited.status, PlannerStatus::NodeLimit);
+  EXPECT_EQ(limited.statistics.expanded, 5u);
+  EXPECT_EQ(limited.plan.root, -1);
+  ContingentOptions time;
+  time.limits.seconds = 1e-9;
+  EXPECT_EQ(solveContingent(task, time).status, PlannerStatus::TimeLimit);
+  ContingentOptions memory;
+  memory.limits.memoryBytes = 1;
+  EXPECT_EQ(solveContingent(task, memory).status, PlannerStatus::MemoryLimit);
+  const std::atomic<bool> cancel{true};
+  ContingentOptions cancelled;
+  cancelled.limits.cancel = &cancel;
+  EXPECT_EQ(solveContingent(task, cancelled).status, PlannerStatus::Cancelled);
 }
 
 // --- Bartender (Table 6.1) and Bimanual Assembly (Tables 6.5/6.6) with toy geometry ---------
@@ -423,7 +450,7 @@ TEST(Scenarios, BartenderBranchesOnEveryBottleAndHandsOverThroughTheSharedArea) 
   KnowledgeTask task(contingent, toyGeometryProcedures());
   EXPECT_EQ(task.initialBelief().size(), 16u);
   const ContingentResult result = solveAndValidate(task);
-  ASSERT_EQ(result.status, SearchStatus::Solved);
+  ASSERT_EQ(result.status, PlannerStatus::Solved);
   EXPECT_EQ(measure(result.plan).leaves, 16.0);
   // Figure 6.2: o1 and o2 are empty. robot1 cannot reach the dishwasher, so it puts o1 down in
   // the shared area where robot2 picks it up; full bottles o3 and o4 stay out of the dishwasher.
@@ -453,7 +480,7 @@ TEST(Scenarios, BimanualAssemblyBuildsTheGearbox) {
   EXPECT_THROW(KnowledgeTask(contingent, ProcedureRegistry{}), InputError);  // needs `reaches`
   KnowledgeTask task(contingent, toyGeometryProcedures());
   const ContingentResult result = solveAndValidate(task);
-  ASSERT_EQ(result.status, SearchStatus::Solved);
+  ASSERT_EQ(result.status, PlannerStatus::Solved);
   EXPECT_EQ(measure(result.plan).leaves, 1.0);
   const std::string text = formatPlanTree(task, result.plan);
   EXPECT_NE(text.find("(assemblepipebearing robot1 o3 robot2"), std::string::npos) << text;
@@ -472,7 +499,7 @@ TEST_P(SearchMode, ForceSensingTwoContainersHasFourValidatedLeaves) {
   ContingentOptions options;
   options.mode = GetParam();
   const ContingentResult result = solveAndValidate(task, options);
-  ASSERT_EQ(result.status, SearchStatus::Solved) << GetParam();
+  ASSERT_EQ(result.status, PlannerStatus::Solved) << GetParam();
   EXPECT_EQ(measure(result.plan).leaves, 4.0) << GetParam();
   // Each container needs grasp, senseWeight, a transfer and ungrasp: no path is shorter.
   EXPECT_GE(measure(result.plan).depth, 8u) << GetParam();
@@ -485,7 +512,7 @@ TEST_P(SearchMode, EbtcsSolvesAndExecutesEveryHiddenState) {
   ContingentOptions options;
   options.mode = GetParam();
   const ContingentResult result = solveAndValidate(task, options);
-  ASSERT_EQ(result.status, SearchStatus::Solved) << GetParam();
+  ASSERT_EQ(result.status, PlannerStatus::Solved) << GetParam();
   EXPECT_GE(measure(result.plan).leaves, 2.0);
   const std::vector<HiddenState> hidden =
       parseHidden(readTextFile(contingentPath("ebtcs/hidden.pddl")), "hidden", contingent);
@@ -523,7 +550,7 @@ TEST_P(PublicBenchmark, SolvesAndEveryBranchValidates) {
                      contingentPath(std::string(b.name) + "/" + b.problem));
   KnowledgeTask task(contingent, ProcedureRegistry{});
   const ContingentResult result = solveAndValidate(task);
-  ASSERT_EQ(result.status, SearchStatus::Solved) << b.name;
+  ASSERT_EQ(result.status, PlannerStatus::Solved) << b.name;
   EXPECT_GE(measure(result.plan).leaves, 2.0) << b.name << ": a contingent plan branches";
 }
 
@@ -543,7 +570,7 @@ TEST(HiddenExecution, EveryHiddenStateOfTheBenchmarksReachesTheGoal) {
         loadContingent(contingentPath(name + "/d.pddl"), contingentPath(name + "/p.pddl"));
     KnowledgeTask task(contingent, ProcedureRegistry{});
     const ContingentResult result = solveContingent(task, {});
-    ASSERT_EQ(result.status, SearchStatus::Solved) << name;
+    ASSERT_EQ(result.status, PlannerStatus::Solved) << name;
     const std::string file = contingentPath(name + "/hidden.pddl");
     const auto hidden = parseHidden(readTextFile(file), file, contingent);
     EXPECT_GE(hidden.size(), 1u);

@@ -7,11 +7,15 @@
 #include <map>
 #include <set>
 
+#include "kaboum/scenarios/stacked_objects.hpp"
 #include "kaboum/symbolic/landmarks.hpp"
-#include "kaboum/symbolic/stacked_objects.hpp"
 #include "symbolic_test_support.hpp"
 
 namespace kaboum::symbolic {
+
+using namespace kaboum::scenarios;
+using namespace kaboum::testing;
+
 namespace {
 
 using testing::pddlPath;
@@ -109,7 +113,7 @@ TEST(Landmarks, CountIsZeroExactlyWhenTheGoalLandmarksHold) {
   SearchOptions bfs;
   bfs.mode = "bfs";
   const PlanReport report = plan(stacked.domain, stacked.problem, {}, bfs);
-  ASSERT_EQ(report.search.status, SearchStatus::Solved);
+  ASSERT_EQ(report.search.status, PlannerStatus::Solved);
   int previous = heuristic.evaluate(evaluator.view(state), nullptr);
   std::vector<std::uint64_t> next(state.size());
   for (const int op : report.search.plan) {
@@ -134,12 +138,12 @@ TEST(Landmarks, LamaStyleSearchSolvesIpcInstancesWithValidPlans) {
       options.lazy = lazy;
       options.limits.seconds = 60;
       const PlanReport report = planAndValidate(domain, problem, options);
-      EXPECT_EQ(report.search.status, SearchStatus::Solved) << instance.problem << " " << lazy;
+      EXPECT_EQ(report.search.status, PlannerStatus::Solved) << instance.problem << " " << lazy;
     }
     SearchOptions alone;
     alone.heuristic = "lmcount";
     alone.limits.seconds = 60;
-    EXPECT_EQ(planAndValidate(domain, problem, alone).search.status, SearchStatus::Solved)
+    EXPECT_EQ(planAndValidate(domain, problem, alone).search.status, PlannerStatus::Solved)
         << instance.problem << " lmcount";
   }
 }

@@ -2,14 +2,19 @@
 // limits end the search cleanly; results are deterministic.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <random>
 
 #include "kaboum/core/error.hpp"
+#include "kaboum/scenarios/stacked_objects.hpp"
 #include "kaboum/symbolic/heuristic.hpp"
-#include "kaboum/symbolic/stacked_objects.hpp"
 #include "symbolic_test_support.hpp"
 
 namespace kaboum::symbolic {
+
+using namespace kaboum::scenarios;
+using namespace kaboum::testing;
+
 namespace {
 
 using testing::pddlPath;
@@ -32,13 +37,13 @@ TEST(Search, HeuristicSearchSolvesIpcInstancesWithValidPlans) {
     for (const std::string heuristic : {"ff", "add"}) {
       for (const std::string mode : {"gbfs", "astar"}) {
         const PlanReport report = planAndValidate(domain, problem, options(mode, heuristic));
-        EXPECT_EQ(report.search.status, SearchStatus::Solved)
+        EXPECT_EQ(report.search.status, PlannerStatus::Solved)
             << instance.problem << " " << mode << " " << heuristic;
       }
     }
     SearchOptions lazy = options("gbfs", "ff");
     lazy.lazy = true;
-    EXPECT_EQ(planAndValidate(domain, problem, lazy).search.status, SearchStatus::Solved);
+    EXPECT_EQ(planAndValidate(domain, problem, lazy).search.status, PlannerStatus::Solved);
   }
 }
 
@@ -49,11 +54,11 @@ TEST(Search, OptimalModesAgreeOnPlanLength) {
   for (const auto& [mode, heuristic] : std::vector<std::pair<std::string, std::string>>{
            {"bfs", "blind"}, {"ids", "blind"}, {"astar", "max"}, {"astar", "blind"}}) {
     const PlanReport report = planAndValidate(domain, problem, options(mode, heuristic));
-    ASSERT_EQ(report.search.status, SearchStatus::Solved) << mode;
+    ASSERT_EQ(report.search.status, PlannerStatus::Solved) << mode;
     EXPECT_EQ(report.plan.size(), 6u) << mode << " " << heuristic;
   }
   const PlanReport dfs = planAndValidate(domain, problem, options("dfs", "blind"));
-  EXPECT_EQ(dfs.search.status, SearchStatus::Solved);
+  EXPECT_EQ(dfs.search.status, PlannerStatus::Solved);
   EXPECT_GE(dfs.plan.size(), 6u);
 }
 
@@ -64,11 +69,11 @@ TEST(Search, BreadthFirstIsNeverBeatenOnStackedObjects) {
   for (int n = 2; n <= 5; ++n) {
     const Problem problem = parseProblem(stackedObjectsProblem(n), "stacked.pddl", domain);
     const PlanReport bfs = planAndValidate(domain, problem, options("bfs", "blind"));
-    ASSERT_EQ(bfs.search.status, SearchStatus::Solved);
+    ASSERT_EQ(bfs.search.status, PlannerStatus::Solved);
     EXPECT_EQ(bfs.plan.size(), static_cast<std::size_t>(2 * n - 1));  // thesis Table 6.4
     for (const std::string mode : {"dfs", "ids", "gbfs", "astar"}) {
       const PlanReport other = planAndValidate(domain, problem, options(mode, "ff"));
-      ASSERT_EQ(other.search.status, SearchStatus::Solved) << mode;
+      ASSERT_EQ(other.search.status, PlannerStatus::Solved) << mode;
       EXPECT_GE(other.plan.size(), bfs.plan.size()) << mode;
       if (mode == "ids") {
         EXPECT_EQ(other.plan.size(), bfs.plan.size());
@@ -81,7 +86,7 @@ TEST(Search, HeuristicSearchScalesOnStackedObjects) {
   const Domain domain = parseDomain(stackedObjectsDomain(), "stacked.pddl");
   const Problem problem = parseProblem(stackedObjectsProblem(12), "stacked.pddl", domain);
   const PlanReport report = planAndValidate(domain, problem, options("gbfs", "ff"));
-  EXPECT_EQ(report.search.status, SearchStatus::Solved);
+  EXPECT_EQ(report.search.status, PlannerStatus::Solved);
 }
 
 TEST(Search, RandomBlocksProblemsYieldValidPlans) {
@@ -108,7 +113,7 @@ TEST(Search, RandomBlocksProblemsYieldValidPlans) {
                      "random.pddl", domain);
     for (const std::string mode : {"gbfs", "astar", "bfs"}) {
       const PlanReport report = planAndValidate(domain, problem, options(mode, "add"));
-      ASSERT_EQ(report.search.status, SearchStatus::Solved) << mode;
+      ASSERT_EQ(report.search.status, PlannerStatus::Solved) << mode;
       // From all blocks on the table, a tower needs a pick-up and a stack per block but one.
       const auto optimal = static_cast<std::size_t>(2 * (n - 1));
       if (mode == "bfs") {
@@ -126,14 +131,18 @@ TEST(Search, ReportsUnsolvableAndLimits) {
   SearchOptions nodes = options("bfs", "blind");
   nodes.limits.expansions = 50;
   const PlanReport limited = plan(domain, problem, {}, nodes);
-  EXPECT_EQ(limited.search.status, SearchStatus::NodeLimit);
+  EXPECT_EQ(limited.search.status, PlannerStatus::NodeLimit);
   EXPECT_EQ(limited.search.statistics.expanded, 50u);
   SearchOptions time = options("bfs", "blind");
   time.limits.seconds = 1e-6;
-  EXPECT_EQ(plan(domain, problem, {}, time).search.status, SearchStatus::TimeLimit);
+  EXPECT_EQ(plan(domain, problem, {}, time).search.status, PlannerStatus::TimeLimit);
   SearchOptions memory = options("bfs", "blind");
   memory.limits.memoryBytes = 64 * 1024;
-  EXPECT_EQ(plan(domain, problem, {}, memory).search.status, SearchStatus::MemoryLimit);
+  EXPECT_EQ(plan(domain, problem, {}, memory).search.status, PlannerStatus::MemoryLimit);
+  const std::atomic<bool> cancel{true};
+  SearchOptions cancelled = options("bfs", "blind");
+  cancelled.limits.cancel = &cancel;
+  EXPECT_EQ(plan(domain, problem, {}, cancelled).search.status, PlannerStatus::Cancelled);
 
   const Domain blocks = loadDomain(pddlPath("blocks/domain.pddl"));
   const Problem impossible = parseProblem(
@@ -142,7 +151,7 @@ TEST(Search, ReportsUnsolvableAndLimits) {
       "x.pddl", blocks);
   for (const std::string& mode : searchModes()) {
     EXPECT_EQ(plan(blocks, impossible, {}, options(mode, "ff")).search.status,
-              SearchStatus::Unsolvable)
+              PlannerStatus::Unsolvable)
         << mode;
   }
 }

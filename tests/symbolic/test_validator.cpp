@@ -6,6 +6,9 @@
 #include "symbolic_test_support.hpp"
 
 namespace kaboum::symbolic {
+
+using namespace kaboum::testing;
+
 namespace {
 
 using testing::pddlPath;

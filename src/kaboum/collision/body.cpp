@@ -5,6 +5,8 @@
 
 namespace kaboum::collision {
 
+using namespace kaboum::geometry;
+
 CollisionBody::CollisionBody(std::span<const std::vector<Vec3>> convexSets,
                              const std::string& what) {
   if (convexSets.empty()) throw InputError(what + ": no convex pieces");

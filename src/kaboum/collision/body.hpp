@@ -13,7 +13,7 @@
 
 namespace kaboum::collision {
 
-using Pose = Eigen::Isometry3d;
+using namespace kaboum::geometry;
 
 // Culling data of one piece in the body frame: a bounding sphere and a box.
 struct PieceBounds {

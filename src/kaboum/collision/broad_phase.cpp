@@ -5,6 +5,8 @@
 
 namespace kaboum::collision {
 
+using namespace kaboum::geometry;
+
 Aabb transformedAabb(const Aabb& local, const Eigen::Isometry3d& pose) {
   const Vec3 centre = pose * (0.5 * (local.lo + local.hi));
   const Vec3 half = pose.linear().cwiseAbs() * (0.5 * (local.hi - local.lo));

@@ -11,6 +11,8 @@
 
 namespace kaboum::collision {
 
+using namespace kaboum::geometry;
+
 struct Aabb {
   Vec3 lo{0, 0, 0};
   Vec3 hi{0, 0, 0};

@@ -9,6 +9,8 @@
 
 namespace kaboum::collision {
 
+using namespace kaboum::geometry;
+
 namespace detail {
 
 std::uint32_t scanVertexChunksScalar(const VertexChunk* chunks, std::size_t chunkCount,

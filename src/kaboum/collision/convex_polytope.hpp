@@ -16,6 +16,8 @@
 
 namespace kaboum::collision {
 
+using namespace kaboum::geometry;
+
 // Eight vertices' coordinates side by side, the unit of the vectorised support scan (one
 // AVX-512 register per coordinate).
 inline constexpr std::size_t kLaneWidth = 8;

@@ -15,6 +15,8 @@
 
 namespace kaboum::collision {
 
+using namespace kaboum::geometry;
+
 // Termination tolerances (lengths in the shapes' units; see docs/collision.md). `absolute`
 // must exceed the rounding error of the coordinates (1e-10 suits |x| up to ~1e4).
 struct GjkTolerance {

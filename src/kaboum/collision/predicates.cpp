@@ -4,6 +4,8 @@
 
 namespace kaboum::collision {
 
+using namespace kaboum::geometry;
+
 bool isInside(const CollisionBody& object, const Pose& objectPose, const ConvexContainer& container,
               const Pose& containerPose) {
   const Pose toContainer = containerPose.inverse() * objectPose;

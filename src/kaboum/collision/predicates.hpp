@@ -13,6 +13,8 @@
 
 namespace kaboum::collision {
 
+using namespace kaboum::geometry;
+
 // A convex region { x : n.x <= d for every facet plane } in its own frame, e.g. a goal region or
 // the inside of a tray (a "location" of seed 003's isInside).
 class ConvexContainer {

@@ -6,9 +6,12 @@
 
 #include "kaboum/core/error.hpp"
 #include "kaboum/geometry/convex_hull.hpp"
-#include "kaboum/io/mesh_io.hpp"
 
 namespace kaboum::collision {
+
+using namespace kaboum::geometry;
+using namespace kaboum::kinematics;
+
 namespace {
 
 constexpr int kCylinderSides = 16;
@@ -54,6 +57,7 @@ std::vector<std::vector<Vec3>> boundingConvexPieces(const TriangleMesh& mesh,
 }
 
 std::vector<std::vector<Vec3>> shapeConvexPieces(const CollisionShape& shape,
+                                                 const LinkMeshes& meshes,
                                                  const LinkPieceOptions& options) {
   std::vector<std::vector<Vec3>> pieces;
   switch (shape.kind) {
@@ -90,7 +94,11 @@ std::vector<std::vector<Vec3>> shapeConvexPieces(const CollisionShape& shape,
       break;
     }
     case CollisionShape::Kind::Mesh: {
-      TriangleMesh mesh = readMesh(shape.meshPath);
+      const auto found = meshes.find(shape.meshPath);
+      if (found == meshes.end()) {
+        throw InputError(shape.meshPath + ": collision mesh not loaded (io::readCollisionMeshes)");
+      }
+      TriangleMesh mesh = found->second;
       for (Vec3& v : mesh.vertices) v = v.cwiseProduct(shape.size);
       pieces = boundingConvexPieces(mesh, shape.meshPath, options);
       break;
@@ -102,14 +110,16 @@ std::vector<std::vector<Vec3>> shapeConvexPieces(const CollisionShape& shape,
   return pieces;
 }
 
-RobotCollisionModel::RobotCollisionModel(RobotModel model, const LinkPieceOptions& pieceOptions)
+RobotCollisionModel::RobotCollisionModel(RobotModel model, const LinkMeshes& meshes,
+                                         const LinkPieceOptions& pieceOptions)
     : model_(std::move(model)) {
   const auto& links = model_.links();
   std::vector<int> partOfLink(links.size(), -1);
   for (std::size_t l = 0; l < links.size(); ++l) {
     std::vector<std::vector<Vec3>> pieces;
     for (const CollisionShape& shape : links[l].collisions) {
-      for (auto& piece : shapeConvexPieces(shape, pieceOptions)) pieces.push_back(std::move(piece));
+      for (auto& piece : shapeConvexPieces(shape, meshes, pieceOptions))
+        pieces.push_back(std::move(piece));
     }
     if (pieces.empty()) continue;
     partOfLink[l] = static_cast<int>(parts_.size());

@@ -3,8 +3,10 @@
 // self-collision with adjacency filtering, and robot-vs-scene checks.
 #pragma once
 
+#include <map>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "kaboum/collision/body.hpp"
@@ -14,6 +16,9 @@
 #include "kaboum/kinematics/robot_model.hpp"
 
 namespace kaboum::collision {
+
+using namespace kaboum::geometry;
+using namespace kaboum::kinematics;
 
 // How link meshes become convex pieces: one convex hull each (fast to build, loose for concave
 // links), or the bounding convex decomposition of §4.4 (seconds per link, within ε).
@@ -28,18 +33,25 @@ std::vector<std::vector<Vec3>> boundingConvexPieces(const TriangleMesh& mesh,
                                                     const std::string& what,
                                                     const LinkPieceOptions& options = {});
 
+// The meshes that a robot's collision shapes name, by their path (CollisionShape::meshPath); the
+// caller reads them (io::readCollisionMeshes), so that collision reads no files.
+using LinkMeshes = std::map<std::string, TriangleMesh>;
+
 // Vertices of a polytope containing a URDF collision shape, in the link frame (the shape's origin
 // applied): a box's corners, a cylinder's circumscribed 16-sided prism, a sphere's circumscribed
-// 42-vertex geodesic polytope, a mesh's bounding convex pieces (read from its file).
+// 42-vertex geodesic polytope, a mesh's bounding convex pieces (the mesh taken from `meshes`;
+// InputError naming the path when it is not there).
 std::vector<std::vector<Vec3>> shapeConvexPieces(const CollisionShape& shape,
+                                                 const LinkMeshes& meshes,
                                                  const LinkPieceOptions& options = {});
 
 class RobotCollisionModel {
  public:
-  // One part per link with collision geometry. Parts of a link and of its nearest ancestor with
-  // geometry are not checked against each other (adjacent links). Throws InputError for
-  // unreadable or degenerate link geometry.
-  explicit RobotCollisionModel(RobotModel model, const LinkPieceOptions& pieces = {});
+  // One part per link with collision geometry, mesh shapes taken from `meshes`. Parts of a link
+  // and of its nearest ancestor with geometry are not checked against each other (adjacent
+  // links). Throws InputError for a missing or degenerate link mesh.
+  RobotCollisionModel(RobotModel model, const LinkMeshes& meshes,
+                      const LinkPieceOptions& pieces = {});
 
   struct Part {
     BodyPtr body;

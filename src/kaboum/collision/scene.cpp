@@ -2,6 +2,8 @@
 
 namespace kaboum::collision {
 
+using namespace kaboum::geometry;
+
 std::size_t CollisionScene::add(BodyPtr body, const Pose& pose, std::string name) {
   objects_.push_back({std::move(body), pose, std::move(name), true, 0});
   rebuild();

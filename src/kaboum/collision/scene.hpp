@@ -11,6 +11,8 @@
 
 namespace kaboum::collision {
 
+using namespace kaboum::geometry;
+
 class CollisionScene {
  public:
   // Adds `body` at `pose` and returns its object id (ids count up from 0 and stay valid). The

@@ -8,6 +8,8 @@
 
 namespace kaboum::collision {
 
+using namespace kaboum::geometry;
+
 // A convex shape S in world coordinates. `support(d, hint)` returns a point of S maximising d.x
 // (d need not be unit length and may be zero); `hint` is the shape's own warm-start state (e.g.
 // the last support vertex), default-constructed for a cold start and updated by every call.

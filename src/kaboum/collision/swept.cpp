@@ -5,6 +5,9 @@
 
 namespace kaboum::collision {
 
+using namespace kaboum::geometry;
+using namespace kaboum::kinematics;
+
 RobotSweep::RobotSweep(const RobotCollisionModel& robot)
     : robot_(robot), chains_(linkSweepChains(robot.model())) {}
 

@@ -12,6 +12,9 @@
 
 namespace kaboum::collision {
 
+using namespace kaboum::geometry;
+using namespace kaboum::kinematics;
+
 // conv(start ∪ end) of a convex shape at two poses: its support point in direction d is the
 // better of the two poses' support points.
 template <SupportMapping Shape>

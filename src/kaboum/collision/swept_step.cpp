@@ -6,6 +6,8 @@
 
 namespace kaboum::collision {
 
+using namespace kaboum::kinematics;
+
 std::vector<LinkSweepChain> linkSweepChains(const RobotModel& model) {
   const auto& links = model.links();
   const auto& joints = model.joints();

@@ -9,6 +9,8 @@
 
 namespace kaboum::collision {
 
+using namespace kaboum::kinematics;
+
 // The joints a link's pose depends on, and a configuration-independent bound on the distance
 // from the link frame origin to every joint origin (a point on its axis) before it.
 struct LinkSweepChain {

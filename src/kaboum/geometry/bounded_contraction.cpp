@@ -6,7 +6,7 @@
 #include <limits>
 #include <optional>
 
-namespace kaboum {
+namespace kaboum::geometry {
 namespace {
 
 constexpr double kParallel = 1e-10;  // squared sine below which two planes count as parallel
@@ -287,4 +287,4 @@ ContractionPoint solveContractionFrom(const Quadric& q, const Vec3& minimizer,
   return solveContractionExhaustive(q, halfSpaces, tolerance);
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -8,7 +8,7 @@
 
 #include "kaboum/geometry/quadric.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 // Half-space constraint normal·x - offset ≥ 0, with a unit normal.
 struct HalfSpace {
@@ -60,4 +60,4 @@ double dualMinimumBound(const Quadric& q, const Vec3& minimizer, double minimum,
 ContractionPoint solveContractionFrom(const Quadric& q, const Vec3& minimizer,
                                       std::span<const HalfSpace> halfSpaces, double tolerance);
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -18,7 +18,7 @@
 #include "kaboum/geometry/triangle_bvh.hpp"
 #include "kaboum/geometry/triangle_grid.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 namespace {
 
 constexpr std::uint32_t kNone = 0xffffffffu;
@@ -1267,4 +1267,4 @@ BoundingMeshResult simplifyBoundingWithin(const TriangleMesh& input, BoundingMes
   return best;
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

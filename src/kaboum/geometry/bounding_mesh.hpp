@@ -12,7 +12,7 @@
 #include "kaboum/geometry/quadric.hpp"
 #include "kaboum/geometry/triangle_mesh.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 // The edge-contraction cost of §4.3.5.
 enum class ContractionCost {
@@ -81,4 +81,4 @@ BoundingMeshResult simplifyBoundingWithin(const TriangleMesh& input, BoundingMes
                                           double epsilon, std::size_t samples,
                                           HausdorffReport& measured, int maxRuns = 7);
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

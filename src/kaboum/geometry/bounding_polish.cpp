@@ -15,7 +15,7 @@
 #include "kaboum/geometry/triangle_bvh.hpp"
 #include "kaboum/geometry/triangle_grid.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 namespace {
 
 // Barycentric points of a result triangle whose distances to the original score it.
@@ -1022,4 +1022,4 @@ PolishStats polishBoundingMesh(const TriangleMesh& original, TriangleMesh& resul
   return stats;
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

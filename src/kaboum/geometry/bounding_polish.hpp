@@ -9,7 +9,7 @@
 #include "kaboum/geometry/bound_side.hpp"
 #include "kaboum/geometry/triangle_mesh.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 struct PolishOptions {
   BoundSide side = BoundSide::Outer;
@@ -48,4 +48,4 @@ struct PolishStats {
 PolishStats polishBoundingMesh(const TriangleMesh& original, TriangleMesh& result,
                                const PolishOptions& options);
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -30,7 +30,7 @@
 #include "kaboum/geometry/surface_sampling.hpp"
 #include "kaboum/geometry/triangle_bvh.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 namespace {
 
 // How ε is shared between the three steps of §4.4.2 (the distances add up by the triangle
@@ -1492,4 +1492,4 @@ DecompositionQuality measureDecomposition(const TriangleMesh& original,
   return quality;
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

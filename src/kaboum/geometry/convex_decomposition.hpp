@@ -12,7 +12,7 @@
 #include "kaboum/geometry/mesh_comparison.hpp"
 #include "kaboum/geometry/triangle_mesh.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 struct DecompositionOptions {
   // Largest distance from the union of the pieces to the (hole-filled) input, in mesh units; when
@@ -104,4 +104,4 @@ DecompositionQuality measureDecomposition(const TriangleMesh& original,
 // All pieces in one mesh (vertices and triangles concatenated), e.g. for distance measurements.
 TriangleMesh mergePieces(std::span<const ConvexPiece> pieces);
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

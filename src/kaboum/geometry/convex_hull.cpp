@@ -10,7 +10,7 @@ extern "C" {
 #include <libqhull_r/qhull_ra.h>
 }
 
-namespace kaboum {
+namespace kaboum::geometry {
 namespace {
 
 // qhull's own state, freed on every exit path.
@@ -114,4 +114,4 @@ ConvexHull convexHull(std::span<const Vec3> points, const std::string& what) {
   return hull;
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -7,7 +7,7 @@
 
 #include "kaboum/geometry/triangle_mesh.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 // A facet plane: unit outward normal n and offset d, the hull being { x : n.x <= d }.
 struct HullPlane {
@@ -28,4 +28,4 @@ struct ConvexHull {
 // are coplanar (the hull has no volume). `what` names the points in that message.
 ConvexHull convexHull(std::span<const Vec3> points, const std::string& what = "points");
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace kaboum {
+namespace kaboum::geometry {
 namespace {
 
 using EdgeKey = std::uint64_t;
@@ -89,4 +89,4 @@ HoleFillingReport fillHoles(TriangleMesh& mesh) {
   return report;
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

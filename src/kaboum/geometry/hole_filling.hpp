@@ -7,7 +7,7 @@
 
 #include "kaboum/geometry/triangle_mesh.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 struct HoleFillingReport {
   std::size_t loops = 0;           // border loops closed
@@ -27,4 +27,4 @@ struct HoleFillingReport {
 // Expects a consistently oriented mesh (see orientOutward); deterministic.
 HoleFillingReport fillHoles(TriangleMesh& mesh);
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 class IndexedMinHeap {
  public:
@@ -106,4 +106,4 @@ class IndexedMinHeap {
   std::vector<std::uint32_t> positions_;  // index in entries_ per id, kAbsent when not queued
 };
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

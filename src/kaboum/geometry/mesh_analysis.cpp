@@ -5,7 +5,7 @@
 #include <numeric>
 #include <span>
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 namespace {
 
@@ -227,4 +227,4 @@ double boundingBoxDiagonal(const TriangleMesh& mesh) {
   return (hi - lo).norm();
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -8,7 +8,7 @@
 
 #include "kaboum/geometry/triangle_mesh.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 // What analyzeMesh finds. Components are sets of triangles connected through shared edges;
 // triangles with a repeated vertex index have no edges and belong to no component.
@@ -50,4 +50,4 @@ struct EdgeNeighbors {
 
 EdgeNeighbors findEdgeNeighbors(const TriangleMesh& mesh);
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -9,7 +9,7 @@
 
 #include "kaboum/geometry/mesh_analysis.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 namespace {
 
@@ -256,4 +256,4 @@ bool orientOutward(TriangleMesh& mesh, bool& changed) {
   return true;
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -4,7 +4,7 @@
 
 #include "kaboum/geometry/triangle_mesh.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 // Merges vertices at most `tolerance` apart (0 = exact duplicates only; -0 equals +0) and drops
 // unreferenced vertices. Each vertex joins the first earlier kept vertex within tolerance; kept
@@ -26,4 +26,4 @@ bool repairOrientation(TriangleMesh& mesh);
 // cannot be oriented consistently; sets `changed` when triangles were flipped.
 bool orientOutward(TriangleMesh& mesh, bool& changed);
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -13,7 +13,7 @@
 #include "kaboum/geometry/surface_sampling.hpp"
 #include "kaboum/geometry/triangle_bvh.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 namespace {
 
@@ -220,4 +220,4 @@ std::size_t countSelfIntersections(const TriangleMesh& mesh) {
   return countSelfIntersections(mesh, TriangleBvh(mesh));
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

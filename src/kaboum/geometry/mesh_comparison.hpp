@@ -9,7 +9,7 @@
 #include "kaboum/geometry/bound_side.hpp"
 #include "kaboum/geometry/triangle_mesh.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 struct DistanceStats {
   double min = 0, mean = 0, max = 0;  // absolute units
@@ -78,4 +78,4 @@ ContainmentReport verifyContainment(const TriangleMesh& original, const Triangle
 // (a fold through the shared vertex). Zero-area triangles are skipped.
 std::size_t countSelfIntersections(const TriangleMesh& mesh);
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

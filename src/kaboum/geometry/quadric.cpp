@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 Quadric Quadric::plane(const Vec3& normal, const Vec3& point) {
   const double d = normal.dot(point);
@@ -106,4 +106,4 @@ Quadric mergeQuadrics(const Quadric& q1, const Quadric& q2, QuadricMerge mode,
   return q1 + q2;
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

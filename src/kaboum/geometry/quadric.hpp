@@ -6,7 +6,7 @@
 
 #include "kaboum/geometry/triangle_mesh.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 struct Quadric {
   Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
@@ -52,4 +52,4 @@ enum class QuadricMerge {
 Quadric mergeQuadrics(const Quadric& q1, const Quadric& q2, QuadricMerge mode,
                       const Vec3& reference, double lengthScale);
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-namespace kaboum {
+namespace kaboum::geometry {
 namespace {
 
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
@@ -307,4 +307,4 @@ std::optional<TriangleMesh> quickHull(std::span<const Vec3> points, double toler
   return QuickHull(points, tolerance).run();
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

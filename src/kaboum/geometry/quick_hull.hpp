@@ -9,7 +9,7 @@
 
 #include "kaboum/geometry/triangle_mesh.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 // The convex hull of `points` as a closed, outward-oriented triangle mesh over some of them
 // (coplanar triangles are not merged): a point at most `tolerance` above the hull's triangles
@@ -19,4 +19,4 @@ namespace kaboum {
 // the caller then falls back to convexHull. The points must be finite (convexHull checks them).
 std::optional<TriangleMesh> quickHull(std::span<const Vec3> points, double tolerance);
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

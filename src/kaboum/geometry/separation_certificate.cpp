@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace kaboum {
+namespace kaboum::geometry {
 namespace {
 
 constexpr double kWellShaped = 1.01e-4;          // crossLength / size² (predicate: 1e-4)
@@ -81,4 +81,4 @@ bool certainlyApart(const PlanedTriangle& t, const PlanedTriangle& u) {
   return allBeyondPlane(t, u, margin) || allBeyondPlane(u, t, margin);
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -8,7 +8,7 @@
 
 #include "kaboum/geometry/triangle_mesh.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 // A mesh triangle with the plane data its owner keeps up to date, so no pair recomputes it.
 struct PlanedTriangle {
@@ -33,4 +33,4 @@ struct PlanedTriangle {
 // "not certain", not "they meet".
 bool certainlyApart(const PlanedTriangle& t, const PlanedTriangle& u);
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 std::optional<std::array<Vec3, 3>> directionsFrom(const Vec3& apex, std::span<const Vec3> corners) {
   const std::size_t count = std::min<std::size_t>(corners.size(), 3);
@@ -49,4 +49,4 @@ double pointSegmentDistance(const Vec3& p, const Vec3& a, const Vec3& b) {
   return (a + s * ab - p).norm();
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -12,7 +12,7 @@
 
 #include "kaboum/geometry/triangle_grid.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 // The unit directions from `apex` to `corners` (two or three points), if each corner is clear of
 // the apex beyond rounding and the directions lie well inside one hemisphere (every one at most 60°
@@ -76,4 +76,4 @@ void forEachSphericalPiece(const std::array<Vec3, 3>& directions, int count, dou
 // The distance from point p to segment ab.
 double pointSegmentDistance(const Vec3& p, const Vec3& a, const Vec3& b);
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

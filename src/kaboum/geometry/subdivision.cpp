@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 TriangleMesh subdivideLoop(const TriangleMesh& mesh) {
   const std::size_t n = mesh.vertices.size();
@@ -83,4 +83,4 @@ TriangleMesh subdivideLoop(const TriangleMesh& mesh) {
   return out;
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

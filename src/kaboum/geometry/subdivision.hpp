@@ -4,10 +4,10 @@
 
 #include "kaboum/geometry/triangle_mesh.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 // One step of Loop's scheme (Loop 1987) with Warren's weights. Border edges use the cubic B-spline
 // boundary rules, so open meshes stay open with smooth borders.
 TriangleMesh subdivideLoop(const TriangleMesh& mesh);
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

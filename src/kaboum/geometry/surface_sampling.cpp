@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 namespace {
 
@@ -105,4 +105,4 @@ std::vector<Vec3> sampleSurface(const TriangleMesh& mesh, std::size_t randomCoun
   return samples;
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -9,7 +9,7 @@
 
 #include "kaboum/geometry/triangle_mesh.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 // Every vertex used by a triangle (by index), the midpoint of every distinct edge (by vertex pair),
 // then `randomCount` uniformly area-weighted random points (deterministic for `seed`, independent
@@ -48,4 +48,4 @@ class SurfaceSampler {
   std::optional<std::mt19937_64> engine_;  // seeded when the random points begin
 };
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -8,7 +8,7 @@
 
 #include "kaboum/core/error.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 namespace {
 
@@ -674,4 +674,4 @@ bool TriangleBvh::intersectsTriangle(const Vec3& a, const Vec3& b, const Vec3& c
   return found;
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -10,7 +10,7 @@
 
 #include "kaboum/geometry/triangle_mesh.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 // Closest point of triangle (a, b, c) to `p`: the projection onto the plane when it falls inside,
 // else the closest point of the three edges. Triangles thinner than 1e-8 of their longest edge
@@ -137,4 +137,4 @@ class TriangleBvh {
   double padding_ = 0.0;
 };
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

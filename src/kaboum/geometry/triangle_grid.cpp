@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-namespace kaboum {
+namespace kaboum::geometry {
 namespace {
 
 constexpr double kFloatMax = std::numeric_limits<float>::max();
@@ -75,4 +75,4 @@ void TriangleGrid::move(std::uint32_t triangle, const Box3& from, const Box3& to
   insert(triangle, to);
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

@@ -7,7 +7,7 @@
 
 #include "kaboum/geometry/triangle_mesh.hpp"
 
-namespace kaboum {
+namespace kaboum::geometry {
 
 // An axis-aligned box in single precision, rounded outward so it contains the exact box: half the
 // memory of a double box, and overlap tests stay conservative.
@@ -94,4 +94,4 @@ class TriangleGrid {
   std::uint32_t free_ = kEnd;
 };
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

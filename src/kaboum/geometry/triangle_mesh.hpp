@@ -7,9 +7,10 @@
 #include <cstdint>
 #include <vector>
 
-namespace kaboum {
+#include "kaboum/core/types.hpp"
 
-using Vec3 = Eigen::Vector3d;
+namespace kaboum::geometry {
+
 using Triangle = std::array<std::uint32_t, 3>;
 
 // Counter-clockwise triangles (seen from outside) index into `vertices`.
@@ -21,4 +22,4 @@ struct TriangleMesh {
   [[nodiscard]] std::size_t triangleCount() const { return triangles.size(); }
 };
 
-}  // namespace kaboum
+}  // namespace kaboum::geometry

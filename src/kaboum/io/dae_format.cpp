@@ -14,6 +14,8 @@
 
 namespace kaboum::io {
 
+using namespace kaboum::geometry;
+
 namespace {
 
 using Affine = Eigen::Matrix4d;

@@ -12,6 +12,8 @@
 
 namespace kaboum::io {
 
+using namespace kaboum::geometry;
+
 // Whole file as bytes; throws InputError naming the file when it cannot be read.
 std::string readFileBytes(const std::string& path);
 

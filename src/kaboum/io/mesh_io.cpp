@@ -14,7 +14,9 @@
 #include "kaboum/geometry/mesh_cleanup.hpp"
 #include "kaboum/io/mesh_formats.hpp"
 
-namespace kaboum {
+namespace kaboum::io {
+
+using namespace kaboum::geometry;
 
 namespace {
 
@@ -67,8 +69,6 @@ void validate(const TriangleMesh& mesh, const std::string& path) {
 
 }  // namespace
 
-namespace io {
-
 std::string readFileBytes(const std::string& path) {
   std::error_code error;
   if (std::filesystem::is_directory(path, error)) {
@@ -92,8 +92,6 @@ void appendShortest(std::string& out, double value) {
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
   out.append(buffer, result.ptr);
 }
-
-}  // namespace io
 
 TriangleMesh readMesh(const std::string& path) {
   TriangleMesh mesh = readByExtension(path);
@@ -134,4 +132,4 @@ void writeMesh(const TriangleMesh& mesh, const std::string& path) {
   }
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::io

@@ -7,7 +7,9 @@
 
 #include "kaboum/geometry/triangle_mesh.hpp"
 
-namespace kaboum {
+namespace kaboum::io {
+
+using namespace kaboum::geometry;
 
 // Reads STL (ascii+binary), OBJ (polygons fan-triangulated, never truncated), PLY (ascii/binary,
 // incl. triangle strips), OFF, DAE via assimp, and VRML 2.0 .wrl with our own reader. Vertices are
@@ -22,4 +24,4 @@ TriangleMesh readMesh(const std::string& path);
 // InputError for an unknown extension or an unwritable path.
 void writeMesh(const TriangleMesh& mesh, const std::string& path);
 
-}  // namespace kaboum
+}  // namespace kaboum::io

@@ -7,6 +7,8 @@
 
 namespace kaboum::io {
 
+using namespace kaboum::geometry;
+
 namespace {
 
 // Resolves one face corner token to a 0-based index. Positive indices may refer to vertices

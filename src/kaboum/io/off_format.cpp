@@ -9,6 +9,8 @@
 
 namespace kaboum::io {
 
+using namespace kaboum::geometry;
+
 namespace {
 
 bool isThreeDimensionalOffKeyword(std::string_view keyword) {

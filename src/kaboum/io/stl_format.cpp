@@ -7,6 +7,8 @@
 
 namespace kaboum::io {
 
+using namespace kaboum::geometry;
+
 namespace {
 
 constexpr std::size_t kHeaderBytes = 80;

@@ -1,4 +1,4 @@
-#include "kaboum/kinematics/urdf_loader.hpp"
+#include "kaboum/io/urdf_loader.hpp"
 
 #include <console_bridge/console.h>
 #include <urdf_model/model.h>
@@ -14,8 +14,13 @@
 #include <sstream>
 
 #include "kaboum/core/error.hpp"
+#include "kaboum/io/mesh_io.hpp"
 
-namespace kaboum {
+namespace kaboum::io {
+
+using namespace kaboum::geometry;
+using namespace kaboum::kinematics;
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -280,4 +285,16 @@ RobotModel loadUrdf(const std::string& path) {
   return parseUrdf(text.str(), path, fs::path(path).parent_path().string());
 }
 
-}  // namespace kaboum
+std::map<std::string, TriangleMesh> readCollisionMeshes(const RobotModel& model) {
+  std::map<std::string, TriangleMesh> meshes;
+  for (const Link& link : model.links()) {
+    for (const CollisionShape& shape : link.collisions) {
+      if (shape.kind == CollisionShape::Kind::Mesh && !meshes.contains(shape.meshPath)) {
+        meshes.emplace(shape.meshPath, readMesh(shape.meshPath));
+      }
+    }
+  }
+  return meshes;
+}
+
+}  // namespace kaboum::io

@@ -2,11 +2,16 @@
 // (mobile base: x, y, θ) joints, limits, link frames and collision geometry (thesis §3.1).
 #pragma once
 
+#include <map>
 #include <string>
 
+#include "kaboum/geometry/triangle_mesh.hpp"
 #include "kaboum/kinematics/robot_model.hpp"
 
-namespace kaboum {
+namespace kaboum::io {
+
+using namespace kaboum::geometry;
+using namespace kaboum::kinematics;
 
 // Reads `path`. Bad input (malformed XML, unknown or floating joint types, kinematic loops,
 // missing mesh files, missing limits) throws InputError naming the file and the element.
@@ -16,4 +21,8 @@ RobotModel loadUrdf(const std::string& path);
 RobotModel parseUrdf(const std::string& xml, const std::string& sourceName,
                      const std::string& baseDir);
 
-}  // namespace kaboum
+// Reads every mesh file that `model`'s collision shapes name, keyed by CollisionShape::meshPath
+// (what collision::RobotCollisionModel takes). Throws InputError naming an unreadable file.
+std::map<std::string, TriangleMesh> readCollisionMeshes(const RobotModel& model);
+
+}  // namespace kaboum::io

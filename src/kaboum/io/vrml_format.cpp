@@ -16,6 +16,8 @@
 
 namespace kaboum::io {
 
+using namespace kaboum::geometry;
+
 namespace {
 
 using Affine = Eigen::Affine3d;

@@ -4,7 +4,7 @@
 #include <numbers>
 #include <vector>
 
-namespace kaboum {
+namespace kaboum::kinematics {
 namespace {
 
 constexpr double kAxisTolerance = 1e-6;  // parallel/perpendicular/intersecting axes
@@ -240,4 +240,4 @@ void ArmIk::solve(const Pose& tip, Solutions& out) const {
   }
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

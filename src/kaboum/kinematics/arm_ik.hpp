@@ -9,7 +9,7 @@
 #include "kaboum/kinematics/closed_form_ik.hpp"
 #include "kaboum/kinematics/kinematic_chain.hpp"
 
-namespace kaboum {
+namespace kaboum::kinematics {
 
 class ArmIk {
  public:
@@ -51,4 +51,4 @@ class ArmIk {
   std::array<double, 6> offset_{};
 };
 
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

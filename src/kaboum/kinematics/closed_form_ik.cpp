@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-namespace kaboum {
+namespace kaboum::kinematics {
 namespace {
 
 constexpr double kDomainSlack = 1e-10;  // rounding tolerance on arccos and sqrt domains
@@ -100,4 +100,4 @@ std::optional<FiveAxisArm::Angles> FiveAxisArm::solve(const Eigen::Vector3d& pos
   return t;
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

@@ -7,9 +7,9 @@
 #include <array>
 #include <optional>
 
-namespace kaboum {
+#include "kaboum/core/types.hpp"
 
-using Pose = Eigen::Isometry3d;
+namespace kaboum::kinematics {
 
 // Six revolute axes (A.3 "Inverse Position for Six Revolute Axes"): base yaw about z; shoulder
 // and elbow about y with base height d1, shoulder offset a1, upper arm a2, elbow offset a3,
@@ -42,4 +42,4 @@ struct FiveAxisArm {
                                             double roll, int k0, int k1) const;
 };
 
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

@@ -4,7 +4,7 @@
 
 #include "kaboum/core/error.hpp"
 
-namespace kaboum {
+namespace kaboum::kinematics {
 namespace {
 
 // World quantities of one constrained shape and what moves it.
@@ -101,7 +101,7 @@ void ConstraintProblem::addConstraint(ConstraintType type, ShapeId first, ShapeI
     throw InputError("Distance constraint needs a non-negative distance");
   }
   constraints_.push_back({function, first, second, distance, costDimension_});
-  costDimension_ += kaboum::costDimension(function);
+  costDimension_ += kaboum::kinematics::costDimension(function);
 }
 
 void ConstraintProblem::computeTools(std::span<const double> q, bool withJacobian) const {
@@ -183,7 +183,7 @@ void ConstraintProblem::evaluateAnalytic(Eigen::VectorXd& cost, Eigen::MatrixXd*
     const Side s2 = side(c.second);
     const Eigen::Vector3d r = s1.point - s2.point;
     const auto row = [&](int k) { return RowDerivative(jacobian, c.row + k); };
-    auto f = cost.segment(c.row, kaboum::costDimension(c.function));
+    auto f = cost.segment(c.row, kaboum::kinematics::costDimension(c.function));
     switch (c.function) {
       case CostFunction::CoincidentPointPoint:
         f = r;
@@ -265,4 +265,4 @@ void ConstraintProblem::evaluateAnalytic(Eigen::VectorXd& cost, Eigen::MatrixXd*
   }
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

@@ -10,7 +10,7 @@
 #include "kaboum/kinematics/geometric_constraint.hpp"
 #include "kaboum/kinematics/kinematic_chain.hpp"
 
-namespace kaboum {
+namespace kaboum::kinematics {
 
 enum class JacobianMode { Analytic, CentralDifferences };
 
@@ -85,4 +85,4 @@ class ConstraintProblem {
   mutable Eigen::VectorXd costPlus_, costMinus_;
 };
 
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

@@ -4,7 +4,7 @@
 
 #include "kaboum/kinematics/random_configuration.hpp"
 
-namespace kaboum {
+namespace kaboum::kinematics {
 
 ConstraintSampler::ConstraintSampler(const ConstraintProblem& problem,
                                      ConstraintSamplerOptions options)
@@ -82,4 +82,4 @@ bool ConstraintSampler::sample(std::span<double> q) {
   return false;
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

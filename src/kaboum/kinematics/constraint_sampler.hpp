@@ -10,7 +10,7 @@
 
 #include "kaboum/kinematics/constraint_problem.hpp"
 
-namespace kaboum {
+namespace kaboum::kinematics {
 
 struct ConstraintSamplerOptions {
   double tolerance = 1e-6;  // ‖F(q)‖ accepted as on the manifold (Algorithm 3's epsilon)
@@ -51,4 +51,4 @@ class ConstraintSampler {
   double lastCostNorm_ = 0;
 };
 
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

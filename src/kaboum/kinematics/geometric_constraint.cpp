@@ -2,7 +2,7 @@
 
 #include "kaboum/core/error.hpp"
 
-namespace kaboum {
+namespace kaboum::kinematics {
 
 CostFunction costFunctionFor(ConstraintType type, PrimitiveShape::Kind first,
                              PrimitiveShape::Kind second) {
@@ -83,4 +83,4 @@ std::string toString(PrimitiveShape::Kind kind) {
   return "?";
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

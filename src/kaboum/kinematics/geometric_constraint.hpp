@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <string>
 
-namespace kaboum {
+namespace kaboum::kinematics {
 
 // A primitive shape in some frame: a point p, a line (p, d) or a plane (p, n); d and n are unit.
 struct PrimitiveShape {
@@ -53,4 +53,4 @@ int costDimension(CostFunction function);
 std::string toString(ConstraintType type);
 std::string toString(PrimitiveShape::Kind kind);
 
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

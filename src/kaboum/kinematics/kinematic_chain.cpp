@@ -6,7 +6,7 @@
 
 #include "kaboum/core/error.hpp"
 
-namespace kaboum {
+namespace kaboum::kinematics {
 
 KinematicChain::KinematicChain(const RobotModel& model, const std::string& tipLink,
                                const std::string& baseLink) {
@@ -96,4 +96,4 @@ Pose KinematicChain::toolPoseAndJacobian(std::span<const double> q, Jacobian& ja
   return pose;
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

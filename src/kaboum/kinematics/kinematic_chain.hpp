@@ -10,7 +10,7 @@
 
 #include "kaboum/kinematics/robot_model.hpp"
 
-namespace kaboum {
+namespace kaboum::kinematics {
 
 using Jacobian = Eigen::Matrix<double, 6, Eigen::Dynamic>;
 
@@ -48,4 +48,4 @@ class KinematicChain {
   std::string tipName_;
 };
 
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

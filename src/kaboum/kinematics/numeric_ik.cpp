@@ -5,7 +5,7 @@
 
 #include "kaboum/kinematics/random_configuration.hpp"
 
-namespace kaboum {
+namespace kaboum::kinematics {
 
 NumericIk::NumericIk(const KinematicChain& chain, NumericIkOptions options)
     : chain_(&chain),
@@ -77,4 +77,4 @@ bool NumericIk::solve(const Pose& target, std::span<const double> initial,
   return false;
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

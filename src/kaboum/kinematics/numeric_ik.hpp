@@ -9,7 +9,7 @@
 
 #include "kaboum/kinematics/kinematic_chain.hpp"
 
-namespace kaboum {
+namespace kaboum::kinematics {
 
 struct NumericIkOptions {
   int maxIterations = 100;             // per start
@@ -44,4 +44,4 @@ class NumericIk {
   int startsUsed_ = 0;
 };
 
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

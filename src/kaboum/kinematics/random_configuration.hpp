@@ -10,7 +10,7 @@
 #include "kaboum/kinematics/kinematic_chain.hpp"
 #include "kaboum/kinematics/robot_model.hpp"
 
-namespace kaboum {
+namespace kaboum::kinematics {
 
 // Uniform double in [0, 1) from the top 53 bits of one engine output.
 inline double uniformUnit(std::mt19937_64& rng) {
@@ -36,4 +36,4 @@ inline std::vector<double> randomConfiguration(const RobotModel& model, std::mt1
   return q;
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

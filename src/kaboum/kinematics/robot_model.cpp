@@ -3,7 +3,7 @@
 #include <deque>
 #include <stdexcept>
 
-namespace kaboum {
+namespace kaboum::kinematics {
 
 Pose Joint::transform(double value) const {
   switch (type) {
@@ -108,4 +108,4 @@ void RobotModel::linkPoses(std::span<const double> q, std::span<Pose> poses) con
   }
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

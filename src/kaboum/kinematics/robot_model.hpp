@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-namespace kaboum {
+#include "kaboum/core/types.hpp"
 
-using Pose = Eigen::Isometry3d;
+namespace kaboum::kinematics {
 
 enum class JointType { Fixed, Revolute, Continuous, Prismatic };
 
@@ -76,4 +76,4 @@ class RobotModel {
   std::vector<int> variableJoints_;
 };
 
-}  // namespace kaboum
+}  // namespace kaboum::kinematics

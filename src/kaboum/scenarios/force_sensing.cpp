@@ -1,8 +1,8 @@
-#include "kaboum/symbolic/force_sensing.hpp"
+#include "kaboum/scenarios/force_sensing.hpp"
 
 #include "kaboum/core/error.hpp"
 
-namespace kaboum::symbolic {
+namespace kaboum::scenarios {
 
 std::string forceSensingDomain() {
   // Table 3.1. K(φ) is written φ, K(¬φ) as (not φ), Kw(φ) as (kw φ); add(Kw, φ) is the effect
@@ -52,4 +52,4 @@ std::string forceSensingProblem(int n) {
          "  )\n  (:goal (and (emptygripper)" + goal + ")))\n";
 }
 
-}  // namespace kaboum::symbolic
+}  // namespace kaboum::scenarios

@@ -4,7 +4,7 @@
 
 #include <string>
 
-namespace kaboum::symbolic {
+namespace kaboum::scenarios {
 
 // Contingent PDDL domain of Table 3.1 in the PKS syntax (independent of n).
 std::string forceSensingDomain();
@@ -12,4 +12,4 @@ std::string forceSensingDomain();
 // unknown; G = K(emptyGripper) ∧ K(isRemoved(oi)).
 std::string forceSensingProblem(int n);
 
-}  // namespace kaboum::symbolic
+}  // namespace kaboum::scenarios

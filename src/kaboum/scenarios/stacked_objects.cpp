@@ -1,8 +1,8 @@
-#include "kaboum/symbolic/stacked_objects.hpp"
+#include "kaboum/scenarios/stacked_objects.hpp"
 
 #include "kaboum/core/error.hpp"
 
-namespace kaboum::symbolic {
+namespace kaboum::scenarios {
 
 std::string stackedObjectsDomain() {
   // Table 6.3, with one addition: moving an object onto the object it already stands on is
@@ -39,4 +39,4 @@ std::string stackedObjectsProblem(int n) {
          "  )\n  (:goal (and " + goal + ")))\n";
 }
 
-}  // namespace kaboum::symbolic
+}  // namespace kaboum::scenarios

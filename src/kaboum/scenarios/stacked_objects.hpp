@@ -4,7 +4,7 @@
 
 #include <string>
 
-namespace kaboum::symbolic {
+namespace kaboum::scenarios {
 
 // PDDL domain text of Table 6.3 (independent of n).
 std::string stackedObjectsDomain();
@@ -12,4 +12,4 @@ std::string stackedObjectsDomain();
 // o1 on stack1 with o2..on on top of it in order.
 std::string stackedObjectsProblem(int n);
 
-}  // namespace kaboum::symbolic
+}  // namespace kaboum::scenarios

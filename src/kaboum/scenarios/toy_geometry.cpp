@@ -1,10 +1,12 @@
-#include "kaboum/symbolic/toy_geometry.hpp"
+#include "kaboum/scenarios/toy_geometry.hpp"
 
 #include <array>
 #include <string_view>
 #include <utility>
 
-namespace kaboum::symbolic {
+namespace kaboum::scenarios {
+
+using namespace kaboum::symbolic;
 
 ProcedureRegistry toyGeometryProcedures() {
   ProcedureRegistry registry;
@@ -19,4 +21,4 @@ ProcedureRegistry toyGeometryProcedures() {
   return registry;
 }
 
-}  // namespace kaboum::symbolic
+}  // namespace kaboum::scenarios

@@ -5,10 +5,12 @@
 
 #include "kaboum/symbolic/attachments.hpp"
 
-namespace kaboum::symbolic {
+namespace kaboum::scenarios {
+
+using namespace kaboum::symbolic;
 
 // Registers the condition checker `reaches(robot, place)`: robot1's workspace excludes `right`
 // and `dishwasher`, robot2's excludes `left` and the pipe `o3`; everything else is reachable.
 ProcedureRegistry toyGeometryProcedures();
 
-}  // namespace kaboum::symbolic
+}  // namespace kaboum::scenarios

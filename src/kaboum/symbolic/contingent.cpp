@@ -1,7 +1,6 @@
 #include "kaboum/symbolic/contingent.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
@@ -32,7 +31,7 @@ bool sameValue(double a, double b) {
 }
 
 struct LimitReached {
-  SearchStatus status;
+  PlannerStatus status;
 };
 
 enum class OrMode { Greedy, AStar, BreadthFirst, DepthFirst };
@@ -57,21 +56,21 @@ class AndOrSearch {
                                      ? options.heuristic
                                      : std::string("blind"),
                                  task.task())),
-        start_(std::chrono::steady_clock::now()) {}
+        deadline_(options.limits, kClockPeriod) {}
 
   ContingentResult run() {
     ContingentResult result;
     try {
       result.plan.root = solve(intern(Belief(task_.initialBelief())), 0);
-      result.status = result.plan.root >= 0 ? SearchStatus::Solved : SearchStatus::Unsolvable;
+      result.status = result.plan.root >= 0 ? PlannerStatus::Solved : PlannerStatus::Unsolvable;
     } catch (const LimitReached& limit) {
       result.status = limit.status;
       result.plan.root = -1;
     }
-    if (result.status == SearchStatus::Solved) result.plan.nodes = std::move(nodes_);
+    if (result.status == PlannerStatus::Solved) result.plan.nodes = std::move(nodes_);
     stats_.beliefs = beliefs_.size();
     stats_.worlds = task_.worldCount();
-    stats_.seconds = elapsed();
+    stats_.seconds = deadline_.elapsedSeconds();
     result.statistics = stats_;
     return result;
   }
@@ -92,10 +91,6 @@ class AndOrSearch {
     int root = 0;  // index into the candidate's outcomes
     std::vector<Outcome> outcomes;
   };
-
-  double elapsed() const {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  }
 
   int intern(Belief&& belief) {
     const auto [it, added] = ids_.try_emplace(std::move(belief), static_cast<int>(beliefs_.size()));
@@ -173,12 +168,8 @@ class AndOrSearch {
   }
 
   void checkLimits() const {
-    if (stats_.expanded >= options_.limits.expansions) throw LimitReached{SearchStatus::NodeLimit};
-    if ((stats_.expanded & 63) == 0 && elapsed() > options_.limits.seconds) {
-      throw LimitReached{SearchStatus::TimeLimit};
-    }
     const std::size_t bytes = task_.worldCount() * 8 * 4 + beliefs_.size() * 64;
-    if (bytes > options_.limits.memoryBytes) throw LimitReached{SearchStatus::MemoryLimit};
+    if (const auto limit = deadline_.reached(stats_.expanded, bytes)) throw LimitReached{*limit};
   }
 
   // Applicable actions of knowledge state `id` with their outcome trees; relaxed dead ends dropped.
@@ -310,6 +301,7 @@ class AndOrSearch {
     return score;
   }
 
+  static constexpr std::size_t kClockPeriod = 64;  // expansions between readings of the clock
   static constexpr char kOpen = 0;
   static constexpr char kOnPath = 1;
   static constexpr char kFailed = 2;
@@ -318,7 +310,7 @@ class AndOrSearch {
   const ContingentOptions& options_;
   OrMode mode_;
   std::unique_ptr<Heuristic> heuristic_;
-  std::chrono::steady_clock::time_point start_;
+  Deadline deadline_;
   std::unordered_map<Belief, int, BeliefHash> ids_;
   std::vector<const Belief*> beliefs_;
   std::vector<int> solved_;  // plan node of each solved knowledge state, -1 otherwise

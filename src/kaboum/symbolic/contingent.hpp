@@ -51,7 +51,7 @@ struct ContingentOptions {
   std::string mode = "gbfs";     // one of contingentSearchModes()
   std::string heuristic = "ff";  // one of heuristicNames(), evaluated per world (maximum);
                                  // ignored by bfs and dfs
-  SearchLimits limits;
+  PlannerLimits limits;
   std::size_t maxDepth = 5000;  // nested branch points on one path
 };
 
@@ -67,7 +67,7 @@ struct ContingentStatistics {
 };
 
 struct ContingentResult {
-  SearchStatus status = SearchStatus::Unsolvable;
+  PlannerStatus status = PlannerStatus::Unsolvable;
   PlanTree plan;
   ContingentStatistics statistics;
 };

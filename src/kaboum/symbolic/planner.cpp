@@ -46,7 +46,7 @@ nlohmann::json toJson(const PlanReport& report) {
                        {"cache_hits", module.cacheHits},
                        {"seconds", module.seconds}});
   }
-  const bool solved = report.search.status == SearchStatus::Solved;
+  const bool solved = report.search.status == PlannerStatus::Solved;
   return {{"status", toString(report.search.status)},
           {"plan_length", solved ? nlohmann::json(report.plan.size()) : nlohmann::json()},
           {"plan", report.plan},

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <deque>
 #include <functional>
+#include <limits>
 #include <map>
 #include <queue>
 #include <tuple>
@@ -22,7 +22,7 @@ constexpr StateId kNoState = PackedSet::kMissing;
 
 // Thrown inside a search when a limit is reached; turned into the matching status.
 struct LimitReached {
-  SearchStatus status;
+  PlannerStatus status;
 };
 
 // Finds applicable operators: each operator is watched by its rarest positive precondition atom,
@@ -77,7 +77,7 @@ class Search {
         generator_(task),
         registry_(evaluator_.layout().words()),
         scratch_(evaluator_.layout().words()),
-        start_(std::chrono::steady_clock::now()) {}
+        deadline_(options.limits) {}
 
   SearchResult run() {
     static const std::map<std::string, void (Search::*)()> kModes = {
@@ -102,7 +102,7 @@ class Search {
       const StateId initial = insert().first;
       parent_[initial] = kNoState;
       if (task_.goal.empty()) {
-        result_.status = SearchStatus::Unsolvable;
+        result_.status = PlannerStatus::Unsolvable;
       } else if (evaluator_.isGoal(view(initial))) {
         solved(initial);
       } else {
@@ -111,21 +111,17 @@ class Search {
     } catch (const LimitReached& limit) {
       result_.status = limit.status;
     } catch (const std::bad_alloc&) {
-      result_.status = SearchStatus::MemoryLimit;
+      result_.status = PlannerStatus::MemoryLimit;
     }
     auto& stats = result_.statistics;
     stats.storedStates = registry_.size();
     stats.memoryBytes = memoryBytes();
-    stats.seconds = elapsed();
+    stats.seconds = deadline_.elapsedSeconds();
     return std::move(result_);
   }
 
  private:
   StateView view(StateId id) const { return evaluator_.view(registry_.get(id)); }
-
-  double elapsed() const {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  }
 
   std::size_t memoryBytes() const {
     return registry_.bytes() + parent_.capacity() * sizeof(StateId) +
@@ -145,11 +141,9 @@ class Search {
   }
 
   void checkLimits() {
-    const auto& limits = options_.limits;
-    if (result_.statistics.expanded >= limits.expansions)
-      throw LimitReached{SearchStatus::NodeLimit};
-    if (elapsed() > limits.seconds) throw LimitReached{SearchStatus::TimeLimit};
-    if (memoryBytes() > limits.memoryBytes) throw LimitReached{SearchStatus::MemoryLimit};
+    if (const auto limit = deadline_.reached(result_.statistics.expanded, memoryBytes())) {
+      throw LimitReached{*limit};
+    }
   }
 
   // Expands `state`: fills successors_ with (operator, successor) pairs, in operator order.
@@ -174,7 +168,7 @@ class Search {
   }
 
   void solved(StateId goal) {
-    result_.status = SearchStatus::Solved;
+    result_.status = PlannerStatus::Solved;
     for (StateId s = goal; parent_[s] != kNoState; s = parent_[s]) result_.plan.push_back(op_[s]);
     std::reverse(result_.plan.begin(), result_.plan.end());
   }
@@ -422,7 +416,7 @@ class Search {
   SuccessorGenerator generator_;
   PackedSet registry_;
   std::vector<std::uint64_t> scratch_;
-  std::chrono::steady_clock::time_point start_;
+  Deadline deadline_;
   std::vector<std::unique_ptr<Heuristic>> heuristics_;
   std::vector<int> values_, parentValues_, ownPreferred_;
   std::vector<std::uint8_t> isPreferred_;
@@ -435,22 +429,6 @@ class Search {
 };
 
 }  // namespace
-
-std::string toString(SearchStatus status) {
-  switch (status) {
-    case SearchStatus::Solved:
-      return "solved";
-    case SearchStatus::Unsolvable:
-      return "unsolvable";
-    case SearchStatus::TimeLimit:
-      return "time-limit";
-    case SearchStatus::MemoryLimit:
-      return "memory-limit";
-    case SearchStatus::NodeLimit:
-      return "node-limit";
-  }
-  return "unknown";
-}
 
 const std::vector<std::string>& searchModes() {
   static const std::vector<std::string> modes = {"dfs", "bfs", "ids", "gbfs", "astar"};

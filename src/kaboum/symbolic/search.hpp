@@ -5,23 +5,15 @@
 #pragma once
 
 #include <cstddef>
-#include <limits>
 #include <string>
 #include <vector>
 
+#include "kaboum/core/deadline.hpp"
+#include "kaboum/core/planner_status.hpp"
 #include "kaboum/symbolic/attachments.hpp"
 #include "kaboum/symbolic/task.hpp"
 
 namespace kaboum::symbolic {
-
-enum class SearchStatus { Solved, Unsolvable, TimeLimit, MemoryLimit, NodeLimit };
-std::string toString(SearchStatus status);
-
-struct SearchLimits {
-  double seconds = std::numeric_limits<double>::infinity();
-  std::size_t memoryBytes = std::numeric_limits<std::size_t>::max();
-  std::size_t expansions = std::numeric_limits<std::size_t>::max();
-};
 
 struct SearchOptions {
   std::string mode = "gbfs";     // one of searchModes()
@@ -30,7 +22,7 @@ struct SearchOptions {
   bool lazy = true;  // gbfs: evaluate states when expanded, not when generated
   // gbfs: alternate open lists for `heuristic` and the landmark-count heuristic (LAMA-style)
   bool landmarks = true;
-  SearchLimits limits;
+  PlannerLimits limits;
 };
 
 struct SearchStatistics {
@@ -46,7 +38,7 @@ struct SearchStatistics {
 };
 
 struct SearchResult {
-  SearchStatus status = SearchStatus::Unsolvable;
+  PlannerStatus status = PlannerStatus::Unsolvable;
   std::vector<int> plan;  // operator indices
   SearchStatistics statistics;
 };

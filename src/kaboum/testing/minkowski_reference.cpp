@@ -1,4 +1,4 @@
-#include "kaboum/collision/minkowski_reference.hpp"
+#include "kaboum/testing/minkowski_reference.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,9 @@
 #include "kaboum/geometry/convex_hull.hpp"
 #include "kaboum/geometry/triangle_bvh.hpp"
 
-namespace kaboum::collision {
+namespace kaboum::testing {
+
+using namespace kaboum::geometry;
 
 MinkowskiReference minkowskiReference(std::span<const Vec3> a, std::span<const Vec3> b) {
   std::vector<Vec3> difference;
@@ -33,4 +35,4 @@ MinkowskiReference minkowskiReference(std::span<const Vec3> a, std::span<const V
   return reference;
 }
 
-}  // namespace kaboum::collision
+}  // namespace kaboum::testing

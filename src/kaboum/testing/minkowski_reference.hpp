@@ -6,7 +6,9 @@
 
 #include "kaboum/geometry/triangle_mesh.hpp"
 
-namespace kaboum::collision {
+namespace kaboum::testing {
+
+using namespace kaboum::geometry;
 
 struct MinkowskiReference {
   // The separation distance when positive; minus the penetration depth (distance from the origin
@@ -21,4 +23,4 @@ struct MinkowskiReference {
 // difference set has no volume.
 MinkowskiReference minkowskiReference(std::span<const Vec3> a, std::span<const Vec3> b);
 
-}  // namespace kaboum::collision
+}  // namespace kaboum::testing

@@ -1,9 +1,12 @@
-#include "kaboum/collision/polytope_pairs.hpp"
+#include "kaboum/testing/polytope_pairs.hpp"
 
 #include <algorithm>
 #include <random>
 
-namespace kaboum::collision {
+namespace kaboum::testing {
+
+using namespace kaboum::geometry;
+
 namespace {
 
 double uniform(std::mt19937_64& rng, double low, double high) {
@@ -85,4 +88,4 @@ std::vector<PolytopePair> randomPolytopePairs(std::size_t count, int vertexCount
   return pairs;
 }
 
-}  // namespace kaboum::collision
+}  // namespace kaboum::testing

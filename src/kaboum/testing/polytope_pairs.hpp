@@ -1,5 +1,5 @@
 // Random convex polytope pairs, deterministic for a seed: the shared workload of the narrow-phase
-// tests, `kaboum bench collision` and bench_collision_pairs (issue 3, "Benchmarks").
+// tests, `kaboum-compare collision` and bench_collision_pairs (issue 3, "Benchmarks").
 #pragma once
 
 #include <Eigen/Geometry>
@@ -8,7 +8,9 @@
 
 #include "kaboum/geometry/triangle_mesh.hpp"
 
-namespace kaboum::collision {
+namespace kaboum::testing {
+
+using namespace kaboum::geometry;
 
 // Two polytopes in their local frames (every listed point is a hull vertex) and their poses.
 struct PolytopePair {
@@ -27,4 +29,4 @@ struct PolytopePair {
 std::vector<PolytopePair> randomPolytopePairs(std::size_t count, int vertexCount,
                                               std::uint64_t seed);
 
-}  // namespace kaboum::collision
+}  // namespace kaboum::testing

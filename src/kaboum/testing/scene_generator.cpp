@@ -1,4 +1,4 @@
-#include "kaboum/collision/scene_generator.hpp"
+#include "kaboum/testing/scene_generator.hpp"
 
 #include <cmath>
 #include <memory>
@@ -6,7 +6,11 @@
 
 #include "kaboum/kinematics/random_configuration.hpp"
 
-namespace kaboum::collision {
+namespace kaboum::testing {
+
+using namespace kaboum::geometry;
+using namespace kaboum::kinematics;
+using namespace kaboum::collision;
 
 Eigen::Quaterniond uniformRotation(std::mt19937_64& rng) {
   const double u1 = uniformUnit(rng), u2 = uniformUnit(rng), u3 = uniformUnit(rng);
@@ -35,4 +39,4 @@ CollisionScene randomObstacleScene(const Aabb& region, int count, int vertices, 
   return scene;
 }
 
-}  // namespace kaboum::collision
+}  // namespace kaboum::testing

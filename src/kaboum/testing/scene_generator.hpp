@@ -7,7 +7,10 @@
 
 #include "kaboum/collision/scene.hpp"
 
-namespace kaboum::collision {
+namespace kaboum::testing {
+
+using namespace kaboum::geometry;
+using namespace kaboum::collision;
 
 // `count` obstacles, each the hull of `vertices` random points within ±halfSize of its origin
 // (the body frame), placed uniformly in `region` with a uniform random orientation.
@@ -17,4 +20,4 @@ CollisionScene randomObstacleScene(const Aabb& region, int count, int vertices, 
 // A uniform random rotation (Shoemake's method on three uniform numbers).
 Eigen::Quaterniond uniformRotation(std::mt19937_64& rng);
 
-}  // namespace kaboum::collision
+}  // namespace kaboum::testing

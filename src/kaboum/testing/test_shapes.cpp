@@ -1,4 +1,4 @@
-#include "kaboum/geometry/test_shapes.hpp"
+#include "kaboum/testing/test_shapes.hpp"
 
 #include <algorithm>
 #include <array>
@@ -6,7 +6,9 @@
 #include <numbers>
 #include <unordered_map>
 
-namespace kaboum {
+namespace kaboum::testing {
+
+using namespace kaboum::geometry;
 
 namespace {
 
@@ -243,4 +245,4 @@ TriangleMesh flipMesh(const TriangleMesh& mesh) {
   return flipped;
 }
 
-}  // namespace kaboum
+}  // namespace kaboum::testing

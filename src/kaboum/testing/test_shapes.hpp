@@ -7,7 +7,9 @@
 
 #include "kaboum/geometry/triangle_mesh.hpp"
 
-namespace kaboum {
+namespace kaboum::testing {
+
+using namespace kaboum::geometry;
 
 // Icosahedron subdivided `subdivisions` times with vertices on the sphere: 20 * 4^s triangles.
 TriangleMesh makeIcosphere(int subdivisions, double radius = 1.0,
@@ -50,4 +52,4 @@ TriangleMesh mergeMeshes(const TriangleMesh& first, const TriangleMesh& second);
 // Every triangle's orientation reversed (outward becomes inward).
 TriangleMesh flipMesh(const TriangleMesh& mesh);
 
-}  // namespace kaboum
+}  // namespace kaboum::testing

@@ -1,0 +1,2 @@
+// Fixture of the module dependency check: a module with no dependencies.
+#pragma once
