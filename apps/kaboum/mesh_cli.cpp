@@ -58,19 +58,6 @@ const char* sideName(BoundSide side) {
   return side == BoundSide::Outer ? "outer" : "inner";
 }
 
-nlohmann::json toJson(const HausdorffReport& report) {
-  const auto stats = [&](const DistanceStats& s) {
-    return nlohmann::json{{"min", s.min},
-                          {"mean", s.mean},
-                          {"max", s.max},
-                          {"max_percent_of_diagonal", 100.0 * s.max / report.diagonal}};
-  };
-  return {{"original_to_result", stats(report.originalToResult)},
-          {"result_to_original", stats(report.resultToOriginal)},
-          {"diagonal", report.diagonal},
-          {"samples", report.samples}};
-}
-
 std::string describe(const DistanceStats& stats, double diagonal) {
   return fmt::format("max {:.4g} ({:.3f}% of diagonal), mean {:.4g}, min {:.4g}", stats.max,
                      100.0 * stats.max / diagonal, stats.mean, stats.min);

@@ -1,9 +1,8 @@
-// Pieces shared by the mesh verbs (bound, check): side flags, loading with orientation repair,
-// Hausdorff reporting in text and JSON.
+// Pieces shared by the mesh verbs (bound, check, decompose): side flags, loading with orientation
+// repair, distance reporting in text.
 #pragma once
 
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 #include <string>
 
 #include "kaboum/geometry/bound_side.hpp"
@@ -33,7 +32,6 @@ LoadedMesh loadOrientedMesh(const std::string& path);
 double parseEpsilon(const std::string& text, double diagonal);
 
 const char* sideName(BoundSide side);
-nlohmann::json toJson(const HausdorffReport& report);
 // "max 1.23e-03 (0.10% of diagonal), mean ..., min ..."
 std::string describe(const DistanceStats& stats, double diagonal);
 

@@ -6,6 +6,7 @@
 
 #include "kaboum/core/error.hpp"
 #include "kaboum/geometry/bounding_mesh.hpp"
+#include "kaboum/io/json_geometry.hpp"
 #include "kaboum/io/mesh_io.hpp"
 #include "mesh_cli.hpp"
 #include "verb.hpp"
@@ -92,39 +93,17 @@ int runBound(const BoundArgs& args) {
   if (!args.quiet) std::cerr << "\n";
   writeMesh(result.mesh, args.output);
   const BoundingMeshStats& s = result.stats;
-  const double rate = s.seconds > 0.0 ? static_cast<double>(s.contractions) / s.seconds : 0.0;
 
   if (args.json) {
-    nlohmann::json out = {
-        {"input", args.input},
-        {"output", args.output},
-        {"side", sideName(args.side)},
-        {"input_vertices", s.inputVertices},
-        {"input_triangles", mesh.triangles.size()},
-        {"output_vertices", s.outputVertices},
-        {"output_triangles", result.mesh.triangles.size()},
-        {"contractions", s.contractions},
-        {"seconds", s.seconds},
-        {"runs", s.runs},
-        {"contractions_per_second", rate},
-        {"stop_reason", s.stopReason},
-        {"input_closed", loaded.closed},
-        {"orientation_repaired", loaded.orientationRepaired},
-        {"locked_vertices", s.lockedVertices},
-        {"rejected",
-         {{"infeasible", s.rejectedInfeasible},
-          {"topology", s.rejectedTopology},
-          {"geometry", s.rejectedGeometry},
-          {"crossing", s.rejectedCrossing}}},
-        {"polish",
-         {{"enabled", args.polish},
-          {"moves", s.polishMoves},
-          {"flips", s.polishFlips},
-          {"relocations", s.polishRelocations},
-          {"seconds", s.polishSeconds}}},
-        {"quadric_error", s.quadricError},
-        {"hausdorff", toJson(hausdorff)},
-    };
+    nlohmann::json out = toJson(result);
+    out.update({{"input", args.input},
+                {"output", args.output},
+                {"side", sideName(args.side)},
+                {"input_triangles", mesh.triangles.size()},
+                {"input_closed", loaded.closed},
+                {"orientation_repaired", loaded.orientationRepaired},
+                {"hausdorff", toJson(hausdorff)}});
+    out["polish"]["enabled"] = args.polish;
     std::cout << out.dump(2) << "\n";
     return 0;
   }
@@ -134,7 +113,7 @@ int runBound(const BoundArgs& args) {
   std::cout << fmt::format("output: {} vertices, {} triangles, {} bound -> {}\n", s.outputVertices,
                            result.mesh.triangles.size(), sideName(args.side), args.output);
   std::cout << fmt::format("contractions: {} in {:.3f} s ({:.0f} contractions/s); stopped: {}\n",
-                           s.contractions, s.seconds, rate, s.stopReason);
+                           s.contractions, s.seconds, contractionsPerSecond(s), s.stopReason);
   if (s.runs > 1) {
     std::cout << fmt::format("distance search: {} runs of the bounding mesh algorithm\n", s.runs);
   }

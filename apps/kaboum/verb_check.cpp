@@ -4,6 +4,7 @@
 
 #include <iostream>
 
+#include "kaboum/io/json_geometry.hpp"
 #include "kaboum/io/mesh_io.hpp"
 #include "mesh_cli.hpp"
 #include "verb.hpp"
@@ -35,20 +36,12 @@ int runCheck(const CheckArgs& args) {
                               containment.selfIntersectingPairs > 0);
 
   if (args.json) {
-    nlohmann::json out = {
-        {"original", args.original},
-        {"result", args.result},
-        {"side", sideName(args.side)},
-        {"containment_defined", containment.defined},
-        {"note", containment.note},
-        {"samples_checked", containment.checked},
-        {"violations", containment.violations},
-        {"worst_violation", containment.worstViolation},
-        {"self_intersecting_pairs", containment.selfIntersectingPairs},
-        {"inside_out", containment.insideOut},
-        {"verified", containment.defined && !violated},
-        {"hausdorff", toJson(hausdorff)},
-    };
+    nlohmann::json out = toJson(containment);
+    out.update({{"original", args.original},
+                {"result", args.result},
+                {"side", sideName(args.side)},
+                {"verified", containment.defined && !violated},
+                {"hausdorff", toJson(hausdorff)}});
     std::cout << out.dump(2) << "\n";
   } else {
     const char* relation =

@@ -6,6 +6,7 @@
 
 #include "kaboum/core/error.hpp"
 #include "kaboum/core/planner_status.hpp"
+#include "kaboum/io/json_symbolic.hpp"
 #include "kaboum/scenarios/toy_geometry.hpp"
 #include "kaboum/symbolic/contingent.hpp"
 #include "kaboum/symbolic/heuristic.hpp"
@@ -45,25 +46,8 @@ int runContingent(const ContingentCliOptions& options) {
   }
   const auto& stats = result.statistics;
   if (options.json) {
-    nlohmann::json report = {{"status", toString(result.status)},
-                             {"search", options.search.mode},
-                             {"plan", symbolic::planTreeJson(task, result.plan)},
-                             {"tree",
-                              {{"actions", metrics.actions},
-                               {"branches", metrics.branches},
-                               {"leaves", metrics.leaves},
-                               {"depth", metrics.depth},
-                               {"dag_nodes", metrics.dagNodes}}},
-                             {"initial_worlds", task.initialBelief().size()},
-                             {"expanded", stats.expanded},
-                             {"generated", stats.generated},
-                             {"evaluated", stats.evaluated},
-                             {"dead_ends", stats.deadEnds},
-                             {"reused", stats.reused},
-                             {"knowledge_states", stats.beliefs},
-                             {"worlds", stats.worlds},
-                             {"operators", task.task().operators.size()},
-                             {"seconds", stats.seconds}};
+    nlohmann::json report = io::toJson(task, result);
+    report["search"] = options.search.mode;
     std::cout << report.dump(2) << "\n";
   } else {
     if (solved && options.planOut.empty()) std::cout << tree;

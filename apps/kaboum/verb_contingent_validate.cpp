@@ -2,8 +2,10 @@
 // with --hidden, executes it against true initial states (thesis §3.3.3 execution of branches).
 #include <iostream>
 #include <memory>
+#include <utility>
 
 #include "kaboum/core/error.hpp"
+#include "kaboum/io/json_symbolic.hpp"
 #include "kaboum/scenarios/toy_geometry.hpp"
 #include "kaboum/symbolic/contingent.hpp"
 #include "verb.hpp"
@@ -42,22 +44,16 @@ int runValidate(const ValidateOptions& options) {
       const std::uint32_t world = task.hiddenWorld(state, options.hidden);
       const symbolic::Execution run = symbolic::executePlanTree(task, plan, world);
       allExecuted = allExecuted && run.reachedGoal;
-      executions.push_back({{"line", state.pos.line},
-                            {"reached_goal", run.reachedGoal},
-                            {"steps", run.steps},
-                            {"message", run.message}});
+      nlohmann::json execution = io::toJson(run);
+      execution["line"] = state.pos.line;
+      executions.push_back(std::move(execution));
     }
   }
   const bool ok = validation.valid && allExecuted;
   if (options.json) {
-    std::cout << nlohmann::json{{"valid", validation.valid},
-                                {"message", validation.message},
-                                {"actions", validation.metrics.actions},
-                                {"leaves", validation.metrics.leaves},
-                                {"depth", validation.metrics.depth},
-                                {"executions", executions}}
-                     .dump(2)
-              << "\n";
+    nlohmann::json out = io::toJson(validation);
+    out["executions"] = executions;
+    std::cout << out.dump(2) << "\n";
   } else {
     if (validation.valid) {
       std::cout << "valid: every branch reaches the goal (" << validation.metrics.leaves

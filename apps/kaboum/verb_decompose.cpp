@@ -1,13 +1,13 @@
 // `kaboum decompose`: bounding convex decomposition (thesis §4.4.2) with Table 4.3's figures.
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <fstream>
 #include <iostream>
 
 #include "kaboum/core/error.hpp"
 #include "kaboum/geometry/convex_decomposition.hpp"
 #include "kaboum/geometry/mesh_analysis.hpp"
+#include "kaboum/io/json_geometry.hpp"
 #include "kaboum/io/mesh_io.hpp"
 #include "mesh_cli.hpp"
 #include "verb.hpp"
@@ -48,29 +48,6 @@ void writePieces(const std::vector<ConvexPiece>& pieces, const std::string& path
   if (!out.flush()) throw InputError(locate(path, "cannot be written"));
 }
 
-struct VertexCounts {
-  std::size_t min = 0, max = 0;
-  double mean = 0.0;
-};
-
-VertexCounts vertexCounts(const std::vector<ConvexPiece>& pieces) {
-  VertexCounts counts{pieces.front().mesh.vertexCount(), 0, 0.0};
-  for (const ConvexPiece& piece : pieces) {
-    counts.min = std::min(counts.min, piece.mesh.vertexCount());
-    counts.max = std::max(counts.max, piece.mesh.vertexCount());
-    counts.mean += static_cast<double>(piece.mesh.vertexCount());
-  }
-  counts.mean /= static_cast<double>(pieces.size());
-  return counts;
-}
-
-nlohmann::json toJson(const DistanceStats& stats, double diagonal) {
-  return {{"min", stats.min},
-          {"mean", stats.mean},
-          {"max", stats.max},
-          {"max_percent_of_diagonal", 100.0 * stats.max / diagonal}};
-}
-
 int runDecompose(const DecomposeArgs& args) {
   const TriangleMesh mesh = readMesh(args.input);
   DecompositionOptions options;
@@ -89,37 +66,11 @@ int runDecompose(const DecomposeArgs& args) {
   }
   writePieces(result.pieces, args.output);
   const DecompositionStats& s = result.stats;
-  const VertexCounts counts = vertexCounts(result.pieces);
   const double diagonal = quality.diagonal;
 
   if (args.json) {
-    const nlohmann::json out = {
-        {"input", args.input},
-        {"output", args.output},
-        {"input_vertices", s.inputVertices},
-        {"input_triangles", s.inputTriangles},
-        {"holes_filled", s.holesFilled},
-        {"epsilon", s.epsilon},
-        {"epsilon_percent_of_diagonal", 100.0 * s.epsilon / diagonal},
-        {"max_pieces", args.maxPieces},
-        {"pieces", result.pieces.size()},
-        {"total_vertices", s.totalVertices},
-        {"vertices_per_piece", {{"min", counts.min}, {"mean", counts.mean}, {"max", counts.max}}},
-        {"bounded_vertices", s.boundedVertices},
-        {"hull_vertices", s.hullVertices},
-        {"splits", s.splits},
-        {"refinements", s.refinements},
-        {"stop_reason", s.stopReason},
-        {"estimated_error", s.estimatedError},
-        {"seconds", s.seconds},
-        {"distances",
-         {{"original_to_approximation", toJson(quality.originalToApproximation, diagonal)},
-          {"approximation_to_original", toJson(quality.approximationToOriginal, diagonal)},
-          {"diagonal", diagonal},
-          {"samples", quality.samples},
-          {"uncovered_samples", quality.uncovered},
-          {"worst_uncovered", quality.worstUncovered}}},
-    };
+    nlohmann::json out = toJson(result, quality);
+    out.update({{"input", args.input}, {"output", args.output}, {"max_pieces", args.maxPieces}});
     std::cout << out.dump(2) << "\n";
     return 0;
   }
@@ -129,6 +80,7 @@ int runDecompose(const DecomposeArgs& args) {
                          : fmt::format("open: {} holes filled", s.holesFilled));
   std::cout << fmt::format("output: {} convex pieces, {} vertices -> {}\n", result.pieces.size(),
                            s.totalVertices, args.output);
+  const PieceVertexCounts counts = pieceVertexCounts(result.pieces);
   std::cout << fmt::format("vertices per convex: min {}, mean {:.1f}, max {}\n", counts.min,
                            counts.mean, counts.max);
   std::cout << fmt::format("epsilon: {:.4g} ({:.3f}% of diagonal), max pieces {}; stopped: {}\n",

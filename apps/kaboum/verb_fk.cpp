@@ -1,9 +1,9 @@
 // `kaboum fk`: forward kinematics of a URDF chain — the tool pose for given joint values.
 #include <Eigen/Geometry>
 #include <iostream>
-#include <nlohmann/json.hpp>
 
 #include "kaboum/core/error.hpp"
+#include "kaboum/io/json_kinematics.hpp"
 #include "kaboum/io/urdf_loader.hpp"
 #include "kaboum/kinematics/kinematic_chain.hpp"
 #include "verb.hpp"
@@ -32,14 +32,13 @@ int runFk(const FkOptions& options) {
                                               std::to_string(options.q.size()) + " values"));
   }
   const Pose pose = chain.toolPose(options.q);
-  const Eigen::Vector3d p = pose.translation();
-  const Eigen::Quaterniond r(pose.linear());
   if (options.json) {
-    nlohmann::json out = {{"tip", chain.tipName()},
-                          {"position", {p.x(), p.y(), p.z()}},
-                          {"quaternion_wxyz", {r.w(), r.x(), r.y(), r.z()}}};
+    nlohmann::json out = toJson(pose);
+    out["tip"] = chain.tipName();
     std::cout << out.dump(2) << "\n";
   } else {
+    const Eigen::Vector3d p = pose.translation();
+    const Eigen::Quaterniond r(pose.linear());
     std::cout.precision(9);
     std::cout << "tip " << chain.tipName() << "\nposition " << p.x() << " " << p.y() << " " << p.z()
               << "\nquaternion " << r.w() << " " << r.x() << " " << r.y() << " " << r.z() << "\n";

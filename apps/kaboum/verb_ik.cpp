@@ -3,9 +3,9 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <iostream>
-#include <nlohmann/json.hpp>
 
 #include "kaboum/core/error.hpp"
+#include "kaboum/io/json_kinematics.hpp"
 #include "kaboum/io/urdf_loader.hpp"
 #include "kaboum/kinematics/arm_ik.hpp"
 #include "kaboum/kinematics/numeric_ik.hpp"
@@ -81,10 +81,8 @@ int runIk(const IkOptions& options) {
   std::string method;
   const auto solutions = solve(chain, target, options, method);
   if (options.json) {
-    nlohmann::json out = {{"tip", chain.tipName()},
-                          {"method", method},
-                          {"reachable", !solutions.empty()},
-                          {"solutions", solutions}};
+    nlohmann::json out = ikSolutionsJson(solutions);
+    out.update({{"tip", chain.tipName()}, {"method", method}});
     std::cout << out.dump(2) << "\n";
   } else if (solutions.empty()) {
     std::cout << "unreachable\n";

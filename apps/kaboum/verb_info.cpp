@@ -3,9 +3,9 @@
 #include <fmt/format.h>
 
 #include <iostream>
-#include <nlohmann/json.hpp>
 
 #include "kaboum/geometry/mesh_analysis.hpp"
+#include "kaboum/io/json_geometry.hpp"
 #include "kaboum/io/mesh_io.hpp"
 #include "verb.hpp"
 
@@ -15,26 +15,6 @@ using namespace kaboum::geometry;
 using namespace kaboum::io;
 
 namespace {
-
-nlohmann::json toJson(const std::string& file, const MeshAnalysis& a) {
-  return {{"file", file},
-          {"vertices", a.vertices},
-          {"triangles", a.triangles},
-          {"components", a.components},
-          {"border_edges", a.borderEdges},
-          {"border_loops", a.borderLoops},
-          {"non_manifold_edges", a.nonManifoldEdges},
-          {"non_manifold_vertices", a.nonManifoldVertices},
-          {"degenerate_triangles", a.degenerateTriangles},
-          {"closed", a.closed},
-          {"edge_manifold", a.edgeManifold},
-          {"consistently_oriented", a.consistentlyOriented},
-          {"outward_oriented", a.outwardOriented},
-          {"volume", a.volume},
-          {"diagonal", a.diagonal},
-          {"box_min", {a.boxMin.x(), a.boxMin.y(), a.boxMin.z()}},
-          {"box_max", {a.boxMax.x(), a.boxMax.y(), a.boxMax.z()}}};
-}
 
 void printHuman(const std::string& file, const MeshAnalysis& a) {
   const auto yesNo = [](bool value) { return value ? "yes" : "no"; };
@@ -67,7 +47,9 @@ VerbRunner setupInfo(CLI::App& command) {
   return [options] {
     const MeshAnalysis analysis = analyzeMesh(readMesh(options->mesh));
     if (options->json) {
-      std::cout << toJson(options->mesh, analysis).dump() << '\n';
+      nlohmann::json out = toJson(analysis);
+      out["file"] = options->mesh;
+      std::cout << out.dump() << '\n';
     } else {
       printHuman(options->mesh, analysis);
     }

@@ -5,6 +5,7 @@
 
 #include "kaboum/core/error.hpp"
 #include "kaboum/core/planner_status.hpp"
+#include "kaboum/io/json_symbolic.hpp"
 #include "kaboum/symbolic/heuristic.hpp"
 #include "kaboum/symbolic/planner.hpp"
 #include "verb.hpp"
@@ -42,7 +43,7 @@ int runPlan(const PlanOptions& options) {
     out << "; cost = " << report.plan.size() << " (unit cost)\n";
   }
   if (options.json) {
-    std::cout << symbolic::toJson(report).dump(2) << "\n";
+    std::cout << io::toJson(report).dump(2) << "\n";
   } else {
     if (solved && options.planOut.empty()) {
       for (const std::string& step : report.plan) std::cout << step << "\n";

@@ -1,8 +1,8 @@
 // `kaboum validate DOMAIN PROBLEM PLAN`: replays a plan and names the first failing step.
 #include <iostream>
 #include <memory>
-#include <nlohmann/json.hpp>
 
+#include "kaboum/io/json_symbolic.hpp"
 #include "kaboum/symbolic/sexpr.hpp"
 #include "kaboum/symbolic/validator.hpp"
 #include "verb.hpp"
@@ -29,12 +29,9 @@ int runValidate(const ValidateOptions& options) {
   const symbolic::ValidationResult result =
       symbolic::validatePlan(domain, problem, plan, attachments);
   if (options.json) {
-    std::cout << nlohmann::json{{"valid", result.valid},
-                                {"steps", plan.size()},
-                                {"failed_step", result.failedStep},
-                                {"message", result.message}}
-                     .dump(2)
-              << "\n";
+    nlohmann::json out = io::toJson(result);
+    out["steps"] = plan.size();
+    std::cout << out.dump(2) << "\n";
   } else {
     std::cout << (result.valid ? "" : "invalid: ") << result.message << "\n";
   }

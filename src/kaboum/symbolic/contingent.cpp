@@ -320,7 +320,8 @@ class AndOrSearch {
   ContingentStatistics stats_;
 };
 
-// Nodes reachable from the root, each with how many edges enter it.
+}  // namespace
+
 std::vector<int> inDegrees(const PlanTree& plan) {
   std::vector<int> degree(plan.nodes.size(), 0);
   std::vector<int> stack{plan.root};
@@ -337,7 +338,6 @@ std::vector<int> inDegrees(const PlanTree& plan) {
   return degree;
 }
 
-// What a branch node tests: "(p a)" or "(= (f a) 3)" (an object-valued term names the object).
 std::string branchTest(const KnowledgeTask& task, const PlanTree::Node& node) {
   if (node.fluent < 0) return task.task().atomNames[node.atom];
   std::string value;
@@ -352,8 +352,6 @@ std::string branchTest(const KnowledgeTask& task, const PlanTree::Node& node) {
   }
   return "(= " + task.task().fluentNames[node.fluent] + " " + value + ")";
 }
-
-}  // namespace
 
 const std::vector<std::string>& contingentSearchModes() {
   static const std::vector<std::string> names{"gbfs", "astar", "bfs", "dfs"};
@@ -442,31 +440,6 @@ std::string formatPlanTree(const KnowledgeTask& task, const PlanTree& plan) {
   std::string out;
   for (const std::string& line : lines) out += line + "\n";
   return out;
-}
-
-nlohmann::json planTreeJson(const KnowledgeTask& task, const PlanTree& plan) {
-  nlohmann::json nodes = nlohmann::json::array();
-  if (plan.root < 0) return {{"root", nullptr}, {"nodes", nodes}};
-  const std::vector<int> degree = inDegrees(plan);
-  for (std::size_t i = 0; i < plan.nodes.size(); ++i) {
-    if (degree[i] == 0 && static_cast<int>(i) != plan.root) continue;
-    const PlanTree::Node& node = plan.nodes[i];
-    nlohmann::json entry = {{"id", i}};
-    if (node.kind == PlanTree::Node::Kind::Goal) {
-      entry["kind"] = "goal";
-    } else if (node.kind == PlanTree::Node::Kind::Action) {
-      entry["kind"] = "action";
-      entry["action"] = "(" + task.task().operators[node.op].name + ")";
-      entry["next"] = node.next;
-    } else {
-      entry["kind"] = "branch";
-      entry["atom"] = branchTest(task, node);
-      entry["on_true"] = node.next;
-      entry["on_false"] = node.onFalse;
-    }
-    nodes.push_back(std::move(entry));
-  }
-  return {{"root", plan.root}, {"nodes", nodes}};
 }
 
 PlanTree parsePlanTree(std::string_view text, const std::string& file, const KnowledgeTask& task) {

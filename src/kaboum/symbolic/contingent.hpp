@@ -3,7 +3,6 @@
 // validator that checks every branch and simulates execution against hidden true states.
 #pragma once
 
-#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -86,7 +85,13 @@ ContingentResult solveContingent(KnowledgeTask& task, const ContingentOptions& o
 //     (branch (isspillable o1) (true (transferupright o1) …) (false …)))
 // A shared node is introduced by `(label nK)` at its first occurrence and reused by `(goto nK)`.
 std::string formatPlanTree(const KnowledgeTask& task, const PlanTree& plan);
-nlohmann::json planTreeJson(const KnowledgeTask& task, const PlanTree& plan);
+
+// How many edges enter each node of the plan; nodes not reachable from the root have 0, and the
+// root counts only edges back to it.
+std::vector<int> inDegrees(const PlanTree& plan);
+// What a branch node tests, as formatPlanTree writes it: "(p a)" or "(= (f a) 3)" (an
+// object-valued term names the object).
+std::string branchTest(const KnowledgeTask& task, const PlanTree::Node& node);
 
 // Parses formatPlanTree's output. Throws InputError (file:line:col) for unknown actions, atoms,
 // labels and malformed branches.

@@ -37,37 +37,4 @@ PlanReport planFiles(const std::string& domainPath, const std::string& problemPa
   return report;
 }
 
-nlohmann::json toJson(const PlanReport& report) {
-  const SearchStatistics& stats = report.search.statistics;
-  nlohmann::json modules = nlohmann::json::array();
-  for (const ModuleStatistics& module : report.modules) {
-    modules.push_back({{"module", module.name},
-                       {"calls", module.calls},
-                       {"cache_hits", module.cacheHits},
-                       {"seconds", module.seconds}});
-  }
-  const bool solved = report.search.status == PlannerStatus::Solved;
-  return {{"status", toString(report.search.status)},
-          {"plan_length", solved ? nlohmann::json(report.plan.size()) : nlohmann::json()},
-          {"plan", report.plan},
-          {"expanded", stats.expanded},
-          {"generated", stats.generated},
-          {"evaluated", stats.evaluated},
-          {"reopened", stats.reopened},
-          {"dead_ends", stats.deadEnds},
-          {"stored_states", stats.storedStates},
-          {"memory_bytes", stats.memoryBytes},
-          {"iterations", stats.iterations},
-          {"grounding",
-           {{"atoms", report.grounding.reachableAtoms},
-            {"operators", report.grounding.operators},
-            {"fixpoint_passes", report.grounding.fixpointPasses}}},
-          {"time",
-           {{"parse", report.parseSeconds},
-            {"ground", report.groundSeconds},
-            {"search", stats.seconds},
-            {"total", report.parseSeconds + report.groundSeconds + stats.seconds}}},
-          {"attachments", modules}};
-}
-
 }  // namespace kaboum::symbolic

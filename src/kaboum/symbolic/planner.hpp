@@ -2,7 +2,6 @@
 // collecting the statistics the CLI, tests and benchmarks report.
 #pragma once
 
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -28,8 +27,5 @@ PlanReport planFiles(const std::string& domainPath, const std::string& problemPa
 // Same for an already parsed domain and problem.
 PlanReport plan(const Domain& domain, const Problem& problem, const ProcedureRegistry& procedures,
                 const SearchOptions& options);
-
-// Statistics as JSON: status, plan, plan_length, search counters, time split, attachments.
-nlohmann::json toJson(const PlanReport& report);
 
 }  // namespace kaboum::symbolic
