@@ -1,4 +1,4 @@
-// Full-robot collision checks (issue 3): the KR5's convex pieces against 50 random convex
+// Full-robot collision checks: the KR5's convex pieces against 50 random convex
 // obstacles, self-collision, swept motions, swept self-collision and isInside. The side-by-side
 // comparison with FCL is `kaboum-compare collision --section robot`
 // (bench/compare/bench_full_robot.cpp).
@@ -55,7 +55,8 @@ void BM_Kr5SceneCheck(benchmark::State& state) {
   const Kr5World& w = world();
   std::size_t i = 0, hits = 0;
   for (auto _ : state) {
-    hits += w.robot.firstSceneCollision(w.poses[i++ % w.poses.size()], w.scene, 0.0).has_value();
+    hits += w.robot.firstSceneCollision(w.poses[i++ % w.poses.size()], {}, w.scene, {}, 0.0)
+                .has_value();
   }
   state.counters["colliding"] = static_cast<double>(hits) / static_cast<double>(state.iterations());
 }
@@ -65,7 +66,7 @@ void BM_Kr5SelfCheck(benchmark::State& state) {
   const Kr5World& w = world();
   std::size_t i = 0;
   for (auto _ : state)
-    benchmark::DoNotOptimize(w.robot.selfCollides(w.poses[i++ % w.poses.size()], 0.0));
+    benchmark::DoNotOptimize(w.robot.selfCollides(w.poses[i++ % w.poses.size()], {}, 0.0));
 }
 BENCHMARK(BM_Kr5SelfCheck);
 
@@ -88,7 +89,7 @@ void BM_Kr5SweptMotion(benchmark::State& state) {
   const double epsilon = static_cast<double>(state.range(0)) * 1e-6;
   std::size_t samples = 0;
   alongMotions(state, w, [&](const std::vector<double>& qa, const std::vector<double>& qb) {
-    benchmark::DoNotOptimize(sweep.firstSceneCollision(qa, qb, w.scene, 0.0, epsilon));
+    benchmark::DoNotOptimize(sweep.firstSceneCollision(qa, qb, {}, w.scene, {}, 0.0, epsilon));
     samples += sweep.sampleCount();
   });
   state.counters["fk_samples"] =
@@ -103,7 +104,7 @@ void BM_Kr5SweptSelfCollision(benchmark::State& state) {
   const double epsilon = static_cast<double>(state.range(0)) * 1e-6;
   std::size_t hits = 0;
   alongMotions(state, w, [&](const std::vector<double>& qa, const std::vector<double>& qb) {
-    hits += sweep.selfCollides(qa, qb, 0.0, epsilon) ? 1 : 0;
+    hits += sweep.selfCollides(qa, qb, {}, 0.0, epsilon) ? 1 : 0;
   });
   state.counters["colliding"] = static_cast<double>(hits) / static_cast<double>(state.iterations());
 }
@@ -118,7 +119,7 @@ void BM_IsInside(benchmark::State& state) {
   for (auto _ : state) {
     const std::size_t o = i++ % w.scene.size();
     benchmark::DoNotOptimize(
-        isInside(w.scene.body(o), w.scene.pose(o), container, Pose::Identity()));
+        isInside(w.scene.body(o), w.scene.pose(o, {}), container, Pose::Identity()));
   }
 }
 BENCHMARK(BM_IsInside);

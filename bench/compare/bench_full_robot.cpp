@@ -81,7 +81,7 @@ struct FclObstacles {
         } else {
           geometry = fclConvex(vertices);
         }
-        objects.push_back(std::make_unique<fcl::CollisionObjectd>(geometry, scene.pose(o)));
+        objects.push_back(std::make_unique<fcl::CollisionObjectd>(geometry, scene.pose(o, {})));
         manager.registerObject(objects.back().get());
       }
     }
@@ -183,7 +183,7 @@ nlohmann::json narrowPhaseDecisions(const RobotCollisionModel& robot, const Coll
   for (std::size_t o = 0; o < scene.size(); ++o) {
     for (std::size_t q = 0; q < scene.body(o).pieceCount(); ++q) {
       obstacleBoxes[o].push_back(
-          collision::transformedAabb(scene.body(o).pieceBounds(q).box, scene.pose(o)));
+          collision::transformedAabb(scene.body(o).pieceBounds(q).box, scene.pose(o, {})));
     }
   }
   for (const auto& linkPoses : poses) {
@@ -197,7 +197,7 @@ nlohmann::json narrowPhaseDecisions(const RobotCollisionModel& robot, const Coll
             if (!obstacleBoxes[o][q].overlaps(box)) continue;
             ++boxesOverlap;
             const collision::TransformedSupport obstacle(
-                scene.body(o).piece(q), collision::inFrameOf(partPose, scene.pose(o)));
+                scene.body(o).piece(q), collision::inFrameOf(partPose, scene.pose(o, {})));
             counts.add(body.piece(p), obstacle);
           }
         }
@@ -223,7 +223,9 @@ nlohmann::json sideBySide(const RobotCollisionModel& robot, const CollisionScene
   std::array<std::vector<char>, 2> answers;
   const auto [kaboumNs, fclNs] = medianTimes(
       poses.size(), runs, answers,
-      [&](std::size_t i) { return robot.firstSceneCollision(poses[i], scene, 0.0).has_value(); },
+      [&](std::size_t i) {
+        return robot.firstSceneCollision(poses[i], {}, scene, {}, 0.0).has_value();
+      },
       [&](std::size_t i) { return fclPieces.collides(poses[i], fclScene.manager); });
   const std::vector<char>& ours = answers[0];
   const std::vector<char>& theirs = answers[1];
@@ -276,10 +278,10 @@ CollisionScene obstaclesAwayFromTheBase(const RobotCollisionModel& robot,
     for (std::size_t i = 0; i < robot.partCount(); ++i) {
       touchesBase |= !linkMoves(robot.model(), robot.part(i).link) &&
                      collision::bodiesCollide(*robot.part(i).body, robot.partPose(i, home),
-                                              candidates.body(o), candidates.pose(o), 0.0);
+                                              candidates.body(o), candidates.pose(o, {}), 0.0);
     }
     if (!touchesBase) {
-      scene.add(candidates.sharedBody(o), candidates.pose(o), candidates.name(o));
+      scene.add(candidates.sharedBody(o), candidates.pose(o, {}), candidates.name(o));
     }
   }
   return scene;
@@ -349,8 +351,9 @@ nlohmann::json runFullRobotBench(const FullRobotBenchOptions& options) {
   FclRobot fclOriginal = FclRobot::originalMeshes(model);
   std::array<std::vector<char>, 3> answers;
   const auto check = [&](const RobotCollisionModel& robot) {
-    return
-        [&](std::size_t i) { return robot.firstSceneCollision(along[i], scene, 0.0).has_value(); };
+    return [&](std::size_t i) {
+      return robot.firstSceneCollision(along[i], {}, scene, {}, 0.0).has_value();
+    };
   };
   const auto [originalNs, hullNs, boundedNs] = medianTimes(
       along.size(), options.runs, answers,

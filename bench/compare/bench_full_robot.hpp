@@ -1,4 +1,4 @@
-// The full-robot collision benchmark of issue 3: a robot's convex pieces against a scene of about
+// The full-robot collision benchmark: a robot's convex pieces against a scene of about
 // 50 convex obstacles, kaboum vs FCL's DynamicAABBTree manager on identical queries, and the
 // Figure 4.9 per-check time distributions along random motions (original meshes vs convex hulls).
 #pragma once

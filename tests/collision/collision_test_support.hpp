@@ -1,5 +1,5 @@
-// Shared helpers of the collision tests: random convex bodies and poses, and the exact distance
-// between posed bodies (minkowskiReference over all piece pairs) as the reference.
+// Shared helpers of the collision tests: random convex bodies and poses, the exact distance
+// between posed bodies (minkowskiReference over all piece pairs) as the reference, and the KR5.
 #pragma once
 
 #include <algorithm>
@@ -11,9 +11,11 @@
 #include <vector>
 
 #include "kaboum/collision/body.hpp"
+#include "kaboum/collision/robot_collision.hpp"
 #include "kaboum/kinematics/random_configuration.hpp"
 #include "kaboum/testing/data_paths.hpp"
 #include "kaboum/testing/minkowski_reference.hpp"
+#include "kaboum/testing/robot_collision_models.hpp"
 
 namespace kaboum::collision::test {
 
@@ -76,6 +78,15 @@ inline double exactDistance(const CollisionBody& a, const Pose& poseA, const Col
     }
   }
   return best;
+}
+
+// The KR5 with the pair its hulls overlap in at home (forearm and palm around the wrist) allowed.
+inline RobotCollisionModel kr5AllowingHomeOverlaps() {
+  RobotCollisionModel robot = kaboum::testing::robotCollisionModel(kKr5);
+  std::vector<Pose> poses(robot.model().links().size());
+  robot.model().linkPoses(std::vector<double>(6, 0.0), poses);
+  robot.allowPairsCollidingAt(poses);
+  return robot;
 }
 
 }  // namespace kaboum::collision::test

@@ -46,35 +46,6 @@ TEST(AabbTree, FindsExactlyTheOverlappingBoxes) {
   }
 }
 
-TEST(AabbTree, RefittedTreeFindsExactlyTheMovedBoxes) {
-  std::mt19937_64 rng(9);
-  std::vector<Aabb> boxes;
-  for (int i = 0; i < 100; ++i) boxes.push_back(randomBox(rng, 0.1));
-  AabbTree tree;
-  tree.build(boxes);
-  for (int round = 0; round < 5; ++round) {
-    for (Aabb& box : boxes) {  // every box drifts, some far
-      const Vec3 shift =
-          Vec3(uniformUnit(rng), uniformUnit(rng), uniformUnit(rng)) - Vec3::Constant(0.5);
-      box = {box.lo + shift, box.hi + shift};
-    }
-    tree.refit(boxes);
-    for (int q = 0; q < 200; ++q) {
-      const Aabb query = randomBox(rng, 0.3);
-      std::vector<std::uint32_t> found, expected;
-      tree.forEachOverlapping(query, [&](std::uint32_t id) {
-        found.push_back(id);
-        return true;
-      });
-      for (std::uint32_t i = 0; i < boxes.size(); ++i) {
-        if (boxes[i].overlaps(query)) expected.push_back(i);
-      }
-      std::sort(found.begin(), found.end());
-      EXPECT_EQ(found, expected) << "round " << round;
-    }
-  }
-}
-
 TEST(AabbTree, StopsWhenTheVisitorSaysSo) {
   std::vector<Aabb> boxes(10, Aabb{Vec3::Zero(), Vec3::Ones()});
   AabbTree tree;
@@ -106,13 +77,11 @@ TEST(AabbTree, TransformedBoxContainsTheRotatedCorners) {
   }
 }
 
-TEST(CollisionFilter, AllowsSymmetricPairsAndKeepsThemWhenGrowing) {
-  CollisionFilter filter(3);
+TEST(CollisionFilter, AllowsSymmetricPairs) {
+  CollisionFilter filter(5);
   EXPECT_TRUE(filter.allowed(1, 1));
   EXPECT_FALSE(filter.allowed(0, 2));
   filter.allow(2, 0);
-  EXPECT_TRUE(filter.allowed(0, 2));
-  filter.resize(5);
   EXPECT_TRUE(filter.allowed(0, 2));
   EXPECT_FALSE(filter.allowed(4, 2));
   filter.allow(0, 2, false);

@@ -81,13 +81,16 @@ class SupportSurface : public ::testing::Test {
   void SetUp() override {
     table =
         scene.add(boxBody(Vec3(-0.5, -0.5, -0.05), Vec3(0.5, 0.5, 0)), Pose::Identity(), "table");
-    can = scene.add(boxBody(Vec3(-0.03, -0.03, 0), Vec3(0.03, 0.03, 0.1)), Pose::Identity(), "can");
+    can = scene.addMovable(boxBody(Vec3(-0.03, -0.03, 0), Vec3(0.03, 0.03, 0.1)), Pose::Identity(),
+                           "can");
+    state = scene.initialState();
   }
   bool onSurface(const Vec3& at) {
-    scene.setPose(can, Pose(Eigen::Translation3d(at)));
-    return isOnSupportSurface(scene, can, 0.005, 0.001);
+    state[scene.slot(can)].pose = Pose(Eigen::Translation3d(at));
+    return isOnSupportSurface(scene, state, can, 0.005, 0.001);
   }
   CollisionScene scene;
+  SceneState state;
   std::size_t table = 0, can = 0;
 };
 
@@ -102,8 +105,16 @@ TEST_F(SupportSurface, RestingJustAboveTheTable) {
 TEST_F(SupportSurface, StackedOnAnotherObject) {
   const auto box = scene.add(boxBody(Vec3(-0.05, -0.05, 0), Vec3(0.05, 0.05, 0.1)),
                              Pose(Eigen::Translation3d(0.2, 0, 0.001)), "box");
-  EXPECT_TRUE(isOnSupportSurface(scene, box, 0.005, 0.001));
+  EXPECT_TRUE(isOnSupportSurface(scene, state, box, 0.005, 0.001));
   EXPECT_TRUE(onSurface(Vec3(0.2, 0, 0.103)));
+}
+
+TEST_F(SupportSurface, AnAbsentObjectSupportsNothing) {
+  const auto lid = scene.add(boxBody(Vec3(-0.03, -0.03, 0), Vec3(0.03, 0.03, 0.01)),
+                             Pose(Eigen::Translation3d(0, 0, 0.102)), "lid");
+  EXPECT_TRUE(isOnSupportSurface(scene, state, lid, 0.005, 0.001)) << "on the can";
+  state[scene.slot(can)].present = false;
+  EXPECT_FALSE(isOnSupportSurface(scene, state, lid, 0.005, 0.001)) << "the can is held";
 }
 
 }  // namespace

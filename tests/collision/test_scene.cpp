@@ -2,6 +2,9 @@
 // against an exact reference, brute force agreement, filtering and attached objects.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <stdexcept>
+
 #include "collision_test_support.hpp"
 #include "kaboum/collision/robot_collision.hpp"
 #include "kaboum/collision/scene.hpp"
@@ -73,31 +76,38 @@ TEST(CollisionBody, CollisionAgreesWithExactDistance) {
 TEST(CollisionScene, BroadPhaseAgreesWithBruteForce) {
   std::mt19937_64 rng(21);
   CollisionScene scene;
-  std::vector<BodyPtr> bodies;
   for (int i = 0; i < 60; ++i) {
-    bodies.push_back(std::make_shared<const CollisionBody>(
-        test::randomConvexSets(rng, 1 + static_cast<int>(rng() % 4), 8, 0.05), "obstacle"));
-    scene.add(bodies.back(), randomPose(rng, 1.0), "obstacle " + std::to_string(i));
+    auto body = std::make_shared<const CollisionBody>(
+        test::randomConvexSets(rng, 1 + static_cast<int>(rng() % 4), 8, 0.05), "obstacle");
+    const Pose pose = randomPose(rng, 1.0);
+    // A third of the objects are movable: fixed obstacles and placements of a state both count.
+    if (i % 3 == 1) {
+      scene.addMovable(std::move(body), pose, "object " + std::to_string(i));
+    } else {
+      scene.add(std::move(body), pose, "obstacle " + std::to_string(i));
+    }
   }
-  scene.setActive(7, false);
+  SceneState state = scene.initialState();
+  state[scene.slot(7)].present = false;
   int hits = 0;
   for (int q = 0; q < 300; ++q) {
-    // Objects move now and then (the broad phase is refitted, not rebuilt).
-    if (q % 5 == 0) scene.setPose(rng() % scene.size(), randomPose(rng, 1.0));
+    // Movable objects move now and then (the state changes, the scene does not).
+    if (q % 5 == 0) state[rng() % state.size()].pose = randomPose(rng, 1.0);
     const CollisionBody probe(test::randomConvexSets(rng, 3, 8, 0.1), "probe");
     const Pose pose = randomPose(rng, 1.0);
     bool expected = false;
     for (std::size_t o = 0; o < scene.size(); ++o) {
-      expected |= o != 7 && bodiesCollide(probe, pose, scene.body(o), scene.pose(o), 0.02);
+      expected |= o != 7 && bodiesCollide(probe, pose, scene.body(o), scene.pose(o, state), 0.02);
     }
-    const auto hit = scene.firstCollision(probe, pose, 0.02);
+    const auto hit = scene.firstCollision(state, probe, pose, 0.02);
     ASSERT_EQ(hit.has_value(), expected);
     if (hit) {
       EXPECT_NE(*hit, 7U);
-      EXPECT_TRUE(bodiesCollide(probe, pose, scene.body(*hit), scene.pose(*hit), 0.02));
-      if (const auto other = scene.firstCollision(probe, pose, 0.02, *hit)) {
+      EXPECT_TRUE(bodiesCollide(probe, pose, scene.body(*hit), scene.pose(*hit, state), 0.02));
+      if (const auto other = scene.firstCollision(state, probe, pose, 0.02, *hit)) {
         EXPECT_NE(*other, *hit) << "ignored object reported";
-        EXPECT_TRUE(bodiesCollide(probe, pose, scene.body(*other), scene.pose(*other), 0.02));
+        EXPECT_TRUE(
+            bodiesCollide(probe, pose, scene.body(*other), scene.pose(*other, state), 0.02));
       }
       ++hits;
     }
@@ -108,15 +118,40 @@ TEST(CollisionScene, BroadPhaseAgreesWithBruteForce) {
 
 TEST(CollisionScene, MovedObjectsAreFoundWhereTheyAre) {
   CollisionScene scene;
-  const auto id = scene.add(boxBody(Vec3(-0.1, -0.1, -0.1), Vec3(0.1, 0.1, 0.1)),
-                            Pose(Eigen::Translation3d(5, 0, 0)), "crate");
+  const auto id = scene.addMovable(boxBody(Vec3(-0.1, -0.1, -0.1), Vec3(0.1, 0.1, 0.1)),
+                                   Pose(Eigen::Translation3d(5, 0, 0)), "crate");
   const auto probe = boxBody(Vec3(-0.1, -0.1, -0.1), Vec3(0.1, 0.1, 0.1));
-  EXPECT_FALSE(scene.firstCollision(*probe, Pose::Identity(), 0));
-  scene.setPose(id, Pose(Eigen::Translation3d(0.15, 0, 0)));
-  EXPECT_EQ(scene.firstCollision(*probe, Pose::Identity(), 0), id);
+  SceneState state = scene.initialState();
+  EXPECT_FALSE(scene.firstCollision(state, *probe, Pose::Identity(), 0));
+  state[scene.slot(id)].pose = Pose(Eigen::Translation3d(0.15, 0, 0));
+  EXPECT_EQ(scene.firstCollision(state, *probe, Pose::Identity(), 0), id);
   EXPECT_EQ(scene.name(id), "crate");
-  scene.setActive(id, false);
-  EXPECT_FALSE(scene.firstCollision(*probe, Pose::Identity(), 0));
+  state[scene.slot(id)].present = false;
+  EXPECT_FALSE(scene.present(id, state));
+  EXPECT_FALSE(scene.firstCollision(state, *probe, Pose::Identity(), 0));
+}
+
+// A state belongs to its scene: one placement per movable object, and only movable objects have
+// a slot.
+TEST(CollisionScene, StatesMustMatchTheScene) {
+  CollisionScene scene;
+  const auto wall =
+      scene.add(boxBody(Vec3::Constant(-0.1), Vec3::Constant(0.1)), Pose::Identity(), "wall");
+  const auto crate = scene.addMovable(boxBody(Vec3::Constant(-0.1), Vec3::Constant(0.1)),
+                                      Pose(Eigen::Translation3d(1, 0, 0)), "crate");
+  EXPECT_FALSE(scene.movable(wall));
+  EXPECT_TRUE(scene.movable(crate));
+  EXPECT_THROW((void)scene.slot(wall), std::invalid_argument);
+  EXPECT_EQ(scene.slot(crate), 0U);
+  const SceneState state = scene.initialState();
+  ASSERT_EQ(state.size(), 1U);
+  EXPECT_TRUE(state[0].pose.isApprox(Pose(Eigen::Translation3d(1, 0, 0))));
+  EXPECT_TRUE(scene.present(wall, state));
+  const auto probe = boxBody(Vec3::Constant(-0.1), Vec3::Constant(0.1));
+  EXPECT_EQ(scene.firstCollision(state, *probe, Pose::Identity(), 0), wall);
+  EXPECT_THROW((void)scene.firstCollision({}, *probe, Pose::Identity(), 0), std::invalid_argument);
+  const SceneState tooLong(2);
+  EXPECT_THROW((void)scene.pose(crate, tooLong), std::invalid_argument);
 }
 
 class Kr5Collision : public ::testing::Test {
@@ -137,10 +172,10 @@ TEST_F(Kr5Collision, OnePartPerLinkWithGeometryAndAdjacentLinksFiltered) {
   }
   robot.model().linkPoses(q, poses);
   // The hulls of forearm and palm overlap around the short wrist at home; allow that pair.
-  EXPECT_TRUE(robot.selfCollides(poses, 0.0));
+  EXPECT_TRUE(robot.selfCollides(poses, {}, 0.0));
   EXPECT_EQ(robot.allowPairsCollidingAt(poses), 1U);
   EXPECT_TRUE(robot.filter().allowed(4, 6));
-  EXPECT_FALSE(robot.selfCollides(poses, 0.0)) << "the home pose is free";
+  EXPECT_FALSE(robot.selfCollides(poses, {}, 0.0)) << "the home pose is free";
 }
 
 TEST_F(Kr5Collision, SelfCollisionFollowsTheFilter) {
@@ -151,13 +186,13 @@ TEST_F(Kr5Collision, SelfCollisionFollowsTheFilter) {
   for (double q2 = 0; q2 < 2.7 && !folded; q2 += 0.1) {
     q = {0, 1.5, q2, 0, 0, 0};
     robot.model().linkPoses(q, poses);
-    folded = robot.selfCollides(poses, 0.0);
+    folded = robot.selfCollides(poses, {}, 0.0);
   }
   ASSERT_TRUE(folded);
   for (std::size_t i = 0; i < robot.partCount(); ++i) {
     for (std::size_t j = i + 1; j < robot.partCount(); ++j) robot.filter().allow(i, j);
   }
-  EXPECT_FALSE(robot.selfCollides(poses, 0.0)) << "every pair allowed";
+  EXPECT_FALSE(robot.selfCollides(poses, {}, 0.0)) << "every pair allowed";
 }
 
 TEST_F(Kr5Collision, SceneAndAttachedObjects) {
@@ -166,17 +201,53 @@ TEST_F(Kr5Collision, SceneAndAttachedObjects) {
   CollisionScene scene;
   // A small cube 0.3 m beyond the tool along the palm's x axis: only a long held object reaches.
   const Vec3 reachAxis = poses[static_cast<std::size_t>(palm)].linear().col(0);
-  const auto cube = scene.add(boxBody(Vec3::Constant(-0.02), Vec3::Constant(0.02)),
-                              Pose(Eigen::Translation3d(tool + 0.3 * reachAxis)), "cube");
-  EXPECT_FALSE(robot.firstSceneCollision(poses, scene, 0.0));
-  const auto rod =
-      robot.attach(boxBody(Vec3(0, -0.01, -0.01), Vec3(0.35, 0.01, 0.01)), palm, Pose::Identity());
-  EXPECT_TRUE(robot.filter().allowed(rod, robot.partCount() - 2)) << "held by the palm";
-  EXPECT_EQ(robot.firstSceneCollision(poses, scene, 0.0), cube);
-  robot.detach(rod);
-  EXPECT_FALSE(robot.firstSceneCollision(poses, scene, 0.0));
-  scene.setPose(cube, Pose(Eigen::Translation3d(tool)));
-  EXPECT_EQ(robot.firstSceneCollision(poses, scene, 0.0), cube);
+  const auto cube = scene.addMovable(boxBody(Vec3::Constant(-0.02), Vec3::Constant(0.02)),
+                                     Pose(Eigen::Translation3d(tool + 0.3 * reachAxis)), "cube");
+  SceneState state = scene.initialState();
+  EXPECT_FALSE(robot.firstSceneCollision(poses, {}, scene, state, 0.0));
+  const std::vector<Attachment> held{
+      {boxBody(Vec3(0, -0.01, -0.01), Vec3(0.35, 0.01, 0.01)), palm, Pose::Identity()}};
+  const std::size_t rod = robot.partCount();
+  EXPECT_FALSE(robot.checksPair(rod, robot.partCount() - 1, held)) << "held by the palm";
+  EXPECT_EQ(robot.firstSceneCollision(poses, held, scene, state, 0.0), cube);
+  EXPECT_FALSE(robot.firstSceneCollision(poses, {}, scene, state, 0.0)) << "put down";
+  state[scene.slot(cube)].pose = Pose(Eigen::Translation3d(tool));
+  EXPECT_EQ(robot.firstSceneCollision(poses, {}, scene, state, 0.0), cube);
+}
+
+// A held object is checked against every other link, and against objects held by other links,
+// but not against its own link nor the other objects that link holds.
+TEST_F(Kr5Collision, HeldObjectsFollowTheFilteringRules) {
+  robot.model().linkPoses(q, poses);
+  robot.allowPairsCollidingAt(poses);
+  const Pose& palmPose = poses[static_cast<std::size_t>(palm)];
+  const auto cube = boxBody(Vec3::Constant(-0.03), Vec3::Constant(0.03));
+  const auto heldAt = [&](const BodyPtr& body, int link, const Vec3& world) {
+    return Attachment{
+        body, link,
+        poses[static_cast<std::size_t>(link)].inverse() * Pose(Eigen::Translation3d(world))};
+  };
+  // A bead around the palm's vertex farthest along its x axis (away from the wrist).
+  const auto& palmVertices = robot.part(6).body->piece(0).vertices();
+  const Vec3 tip = *std::max_element(palmVertices.begin(), palmVertices.end(),
+                                     [](const Vec3& a, const Vec3& b) { return a.x() < b.x(); });
+  const auto bead = boxBody(Vec3::Constant(-0.01), Vec3::Constant(0.01));
+  const std::vector<Attachment> atTheTip{heldAt(bead, palm, palmPose * (tip + Vec3(0.005, 0, 0)))};
+  ASSERT_TRUE(bodiesCollide(*robot.part(6).body, robot.partPose(6, poses), *bead,
+                            robot.partPose(robot.partCount(), poses, atTheTip), 0.0));
+  EXPECT_FALSE(robot.selfCollides(poses, atTheTip, 0.0)) << "overlaps only its own link";
+  const Vec3 inTheBase =
+      robot.partPose(0, poses) * robot.part(0).body->piece(0).innerSphereCenter();
+  const std::vector<Attachment> atTheBase{heldAt(cube, palm, inTheBase)};
+  EXPECT_TRUE(robot.selfCollides(poses, atTheBase, 0.0)) << "held by the palm, inside the base";
+  const Vec3 away = palmPose.translation() + Vec3(0, 0, 1);
+  const std::vector<Attachment> sameLink{heldAt(cube, palm, away), heldAt(cube, palm, away)};
+  EXPECT_FALSE(robot.selfCollides(poses, sameLink, 0.0)) << "both held by the palm";
+  const int forearm = robot.part(4).link;
+  const std::vector<Attachment> twoLinks{heldAt(cube, palm, away), heldAt(cube, forearm, away)};
+  EXPECT_TRUE(robot.selfCollides(poses, twoLinks, 0.0)) << "held by two links, overlapping";
+  const std::vector<Attachment> noLink{{cube, 99, Pose::Identity()}};
+  EXPECT_THROW((void)robot.selfCollides(poses, noLink, 0.0), std::out_of_range);
 }
 
 TEST(RobotCollisionModel, PrimitiveShapesAreBounded) {

@@ -44,24 +44,26 @@ CollisionScene scatteredBoxes(std::mt19937_64& rng, int count) {
   return scene;
 }
 
-// Exact checks (margin 0) at `samples` + 1 evenly spaced configurations of qa -> qb.
-bool denseSamplingCollides(const RobotCollisionModel& robot, std::span<const double> qa,
-                           std::span<const double> qb, const CollisionScene& scene, int samples) {
+// Exact checks (margin 0) at `samples` + 1 evenly spaced configurations of qa -> qb, holding
+// `held`.
+bool denseSamplingCollides(const RobotCollisionModel& robot, std::span<const Attachment> held,
+                           std::span<const double> qa, std::span<const double> qb,
+                           const CollisionScene& scene, int samples) {
   std::vector<Pose> poses(robot.model().links().size());
   std::vector<double> q(qa.size());
   for (int s = 0; s <= samples; ++s) {
     for (std::size_t v = 0; v < q.size(); ++v) q[v] = qa[v] + s * (qb[v] - qa[v]) / samples;
     robot.model().linkPoses(q, poses);
-    if (robot.firstSceneCollision(poses, scene, 0.0)) return true;
+    if (robot.firstSceneCollision(poses, held, scene, {}, 0.0)) return true;
   }
   return false;
 }
 
 TEST(RobotSweep, DenseSamplingNeverFindsACollisionTheSweepCalledFree) {
-  RobotCollisionModel robot = kaboum::testing::robotCollisionModel(test::kKr5);
+  const RobotCollisionModel robot = kaboum::testing::robotCollisionModel(test::kKr5);
   const int palm = *robot.model().findLink("palm");
-  robot.attach(test::boxBody(Vec3(0, -0.02, -0.02), Vec3(0.25, 0.02, 0.02)), palm,
-               Pose::Identity());
+  const std::vector<Attachment> held{
+      {test::boxBody(Vec3(0, -0.02, -0.02), Vec3(0.25, 0.02, 0.02)), palm, Pose::Identity()}};
   RobotSweep sweep(robot);
   std::mt19937_64 rng(8);
   const CollisionScene scene = scatteredBoxes(rng, 15);
@@ -76,8 +78,8 @@ TEST(RobotSweep, DenseSamplingNeverFindsACollisionTheSweepCalledFree) {
     const auto qa = randomConfiguration(robot.model(), rng);
     auto qb = randomConfiguration(robot.model(), rng);
     for (std::size_t v = 0; v < qb.size(); ++v) qb[v] = qa[v] + 0.5 * (qb[v] - qa[v]);
-    const bool swept = sweep.firstSceneCollision(qa, qb, scene, 0.0, epsilon).has_value();
-    const bool sampled = denseSamplingCollides(robot, qa, qb, scene, 400);
+    const bool swept = sweep.firstSceneCollision(qa, qb, held, scene, {}, 0.0, epsilon).has_value();
+    const bool sampled = denseSamplingCollides(robot, held, qa, qb, scene, 400);
     if (sampled) {
       EXPECT_TRUE(swept) << "motion " << m << " collides between samples";
     }
@@ -94,39 +96,31 @@ TEST(RobotSweep, StepsShrinkWithEpsilonAndAStillRobotNeedsOne) {
   const RobotCollisionModel robot = kaboum::testing::robotCollisionModel(test::kKr5);
   RobotSweep sweep(robot);
   const std::vector<double> qa{0, 0, 0, 0, 0, 0}, qb{1, -0.5, 0.5, 1, 1, 1};
-  sweep.sweep(qa, qa, 0.001);
+  sweep.sweep(qa, qa, {}, 0.001);
   EXPECT_EQ(sweep.sampleCount(), 2U);
-  sweep.sweep(qa, qb, 0.004);
+  sweep.sweep(qa, qb, {}, 0.004);
   const auto coarse = sweep.sampleCount();
-  sweep.sweep(qa, qb, 0.001);
+  sweep.sweep(qa, qb, {}, 0.001);
   EXPECT_GE(sweep.sampleCount(), 2 * coarse - 1) << "Proposition 3: 4x precision, 2x samples";
 }
 
-// Exact self-collision checks (margin 0) at `samples` + 1 evenly spaced configurations; returns the
-// first colliding sample, or -1.
+// Exact self-collision checks (margin 0) at `samples` + 1 evenly spaced configurations, holding
+// `held`; returns the first colliding sample, or -1.
 int firstSelfCollidingSample(const RobotCollisionModel& robot, std::span<const double> qa,
-                             std::span<const double> qb, int samples) {
+                             std::span<const double> qb, int samples,
+                             std::span<const Attachment> held = {}) {
   std::vector<Pose> poses(robot.model().links().size());
   std::vector<double> q(qa.size());
   for (int s = 0; s <= samples; ++s) {
     for (std::size_t v = 0; v < q.size(); ++v) q[v] = qa[v] + s * (qb[v] - qa[v]) / samples;
     robot.model().linkPoses(q, poses);
-    if (robot.selfCollides(poses, 0.0)) return s;
+    if (robot.selfCollides(poses, held, 0.0)) return s;
   }
   return -1;
 }
 
-// The KR5 with the pair its hulls overlap in at home (forearm and palm around the wrist) allowed.
-RobotCollisionModel kr5AllowingHomeOverlaps() {
-  RobotCollisionModel robot = kaboum::testing::robotCollisionModel(test::kKr5);
-  std::vector<Pose> poses(robot.model().links().size());
-  robot.model().linkPoses(std::vector<double>(6, 0.0), poses);
-  robot.allowPairsCollidingAt(poses);
-  return robot;
-}
-
 TEST(RobotSweep, SelfCollisionOnlyInTheMiddleOfAMotionIsCaught) {
-  const RobotCollisionModel robot = kr5AllowingHomeOverlaps();
+  const RobotCollisionModel robot = test::kr5AllowingHomeOverlaps();
   RobotSweep sweep(robot);
   // Found by random search: shoulder, elbow and wrist pitch move, the palm passes through the
   // base between two self-collision-free end configurations.
@@ -136,12 +130,12 @@ TEST(RobotSweep, SelfCollisionOnlyInTheMiddleOfAMotionIsCaught) {
   ASSERT_EQ(firstSelfCollidingSample(robot, qb, qb, 1), -1);
   ASSERT_GT(firstSelfCollidingSample(robot, qa, qb, 400), 0);
   for (const double epsilon : {0.001, 0.005, 0.02}) {
-    EXPECT_TRUE(sweep.selfCollides(qa, qb, 0.0, epsilon)) << "epsilon " << epsilon;
+    EXPECT_TRUE(sweep.selfCollides(qa, qb, {}, 0.0, epsilon)) << "epsilon " << epsilon;
   }
 }
 
 TEST(RobotSweep, DenseSamplingNeverFindsASelfCollisionTheSweepCalledFree) {
-  const RobotCollisionModel robot = kr5AllowingHomeOverlaps();
+  const RobotCollisionModel robot = test::kr5AllowingHomeOverlaps();
   RobotSweep sweep(robot);
   std::mt19937_64 rng(21);
 #if defined(__SANITIZE_ADDRESS__)
@@ -155,7 +149,7 @@ TEST(RobotSweep, DenseSamplingNeverFindsASelfCollisionTheSweepCalledFree) {
   for (int m = 0; m < motions; ++m) {
     const auto qa = randomConfiguration(robot.model(), rng),
                qb = randomConfiguration(robot.model(), rng);
-    const bool sweptHit = sweep.selfCollides(qa, qb, 0.0, epsilon);
+    const bool sweptHit = sweep.selfCollides(qa, qb, {}, 0.0, epsilon);
     const int first = firstSelfCollidingSample(robot, qa, qb, samples);
     if (first >= 0) {
       EXPECT_TRUE(sweptHit) << "motion " << m << " self-collides at sample " << first;
@@ -167,7 +161,7 @@ TEST(RobotSweep, DenseSamplingNeverFindsASelfCollisionTheSweepCalledFree) {
       for (int s = 0; s <= samples && !near; ++s) {
         for (std::size_t v = 0; v < q.size(); ++v) q[v] = qa[v] + s * (qb[v] - qa[v]) / samples;
         robot.model().linkPoses(q, poses);
-        near = robot.selfCollides(poses, 3 * epsilon);
+        near = robot.selfCollides(poses, {}, 3 * epsilon);
       }
       loose += !near;
     }
@@ -179,17 +173,53 @@ TEST(RobotSweep, DenseSamplingNeverFindsASelfCollisionTheSweepCalledFree) {
   EXPECT_LE(loose, motions / 100) << "self-collisions reported farther than 3 epsilon";
 }
 
+// A held rod sweeps with its link: dense sampling never finds a self-collision (of the rod with
+// another link, or of two links) that the swept check called free.
+TEST(RobotSweep, DenseSamplingNeverFindsASelfCollisionOfAHeldObjectTheSweepCalledFree) {
+  const RobotCollisionModel robot = test::kr5AllowingHomeOverlaps();
+  const int palm = *robot.model().findLink("palm");
+  // A rod from just beyond the palm's tip (its largest x) outwards.
+  double tip = 0;
+  for (const Vec3& v : robot.part(robot.partCount() - 1).body->piece(0).vertices()) {
+    tip = std::max(tip, v.x());
+  }
+  const std::vector<Attachment> held{
+      {test::boxBody(Vec3(tip + 0.01, -0.02, -0.02), Vec3(tip + 0.4, 0.02, 0.02)), palm,
+       Pose::Identity()}};
+  RobotSweep sweep(robot);
+  std::mt19937_64 rng(17);
+#if defined(__SANITIZE_ADDRESS__)
+  const int motions = 40;
+#else
+  const int motions = 120;
+#endif
+  int swept = 0, heldOnly = 0;
+  for (int m = 0; m < motions; ++m) {
+    const auto qa = randomConfiguration(robot.model(), rng),
+               qb = randomConfiguration(robot.model(), rng);
+    const bool sweptHit = sweep.selfCollides(qa, qb, held, 0.0, 0.005);
+    const int first = firstSelfCollidingSample(robot, qa, qb, 400, held);
+    if (first >= 0) {
+      EXPECT_TRUE(sweptHit) << "motion " << m << " self-collides at sample " << first;
+      heldOnly += firstSelfCollidingSample(robot, qa, qb, 400) < 0;
+    }
+    swept += sweptHit;
+  }
+  EXPECT_GT(heldOnly, 0) << "some motions collide only through the held rod";
+  EXPECT_LT(swept, motions);
+}
+
 TEST(RobotSweep, SelfCollisionFollowsTheFilter) {
   RobotCollisionModel robot = kaboum::testing::robotCollisionModel(test::kKr5);
   RobotSweep sweep(robot);
   // The elbow folds back onto the base between these two configurations.
   const std::vector<double> qa{0, 1.5, 0, 0, 0, 0}, qb{0, 1.5, 2.7, 0, 0, 0};
   ASSERT_GE(firstSelfCollidingSample(robot, qa, qb, 100), 0);
-  EXPECT_TRUE(sweep.selfCollides(qa, qb, 0.0, 0.002));
+  EXPECT_TRUE(sweep.selfCollides(qa, qb, {}, 0.0, 0.002));
   for (std::size_t i = 0; i < robot.partCount(); ++i) {
     for (std::size_t j = i + 1; j < robot.partCount(); ++j) robot.filter().allow(i, j);
   }
-  EXPECT_FALSE(sweep.selfCollides(qa, qb, 0.0, 0.002)) << "every pair allowed";
+  EXPECT_FALSE(sweep.selfCollides(qa, qb, {}, 0.0, 0.002)) << "every pair allowed";
 }
 
 TEST(SweptVolumes, DenseSamplingNeverFindsACollisionTheSweepsCalledFree) {
@@ -212,7 +242,8 @@ TEST(SweptVolumes, DenseSamplingNeverFindsACollisionTheSweepsCalledFree) {
   for (int m = 0; m < motions; ++m) {
     const auto qa0 = randomConfiguration(model, rng), qa1 = randomConfiguration(model, rng);
     const auto qb0 = randomConfiguration(model, rng), qb1 = randomConfiguration(model, rng);
-    const bool swept = sweptVolumesCollide(sweepLeft, qa0, qa1, sweepRight, qb0, qb1, 0, epsilon);
+    const bool swept =
+        sweptVolumesCollide(sweepLeft, qa0, qa1, {}, sweepRight, qb0, qb1, {}, 0, epsilon);
     collisions += swept;
     if (swept) continue;
     std::vector<double> qa(6), qb(6);

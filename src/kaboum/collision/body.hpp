@@ -1,4 +1,4 @@
-// Rigid bodies made of convex pieces (issue 3, "rigid bodies made of sets of convex pieces"): the
+// Rigid bodies made of convex pieces (thesis §4.4, bounding convex decompositions): the
 // bounding convex decomposition of one object or robot link in its own frame, posed by an
 // Isometry3d at query time without copying or transforming vertices.
 #pragma once

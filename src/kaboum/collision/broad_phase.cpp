@@ -25,22 +25,6 @@ void AabbTree::build(std::span<const Aabb> boxes) {
   buildNode(0, static_cast<std::uint32_t>(boxes.size()));
 }
 
-void AabbTree::refit(std::span<const Aabb> boxes) {
-  for (std::size_t slot = 0; slot < boxes_.size(); ++slot) boxes_[slot] = boxes[ids_[slot]];
-  // Children come after their parent (pre-order), so a backward pass sees them refitted first.
-  for (std::size_t n = nodes_.size(); n-- > 0;) {
-    Node& node = nodes_[n];
-    if (node.count > 0) {
-      node.box = boxes_[node.first];
-      for (std::uint32_t i = node.first + 1; i < node.first + node.count; ++i) {
-        node.box = node.box.merged(boxes_[i]);
-      }
-    } else {
-      node.box = nodes_[n + 1].box.merged(nodes_[node.first].box);
-    }
-  }
-}
-
 void AabbTree::buildNode(std::uint32_t begin, std::uint32_t end) {
   const auto index = static_cast<std::uint32_t>(nodes_.size());
   nodes_.emplace_back();

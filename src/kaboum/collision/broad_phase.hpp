@@ -1,5 +1,5 @@
 // Axis-aligned boxes and a bounding-volume tree over them: the broad phase that sends only nearby
-// convex pieces to the narrow phase (issue 3, "rigid bodies ... a broad phase for a scene").
+// convex pieces to the narrow phase.
 #pragma once
 
 #include <array>
@@ -32,15 +32,11 @@ struct Aabb {
 Aabb transformedAabb(const Aabb& local, const Eigen::Isometry3d& pose);
 
 // Binary tree over boxes, built top-down (median split on the longest axis of the centres).
-// When boxes move, refit() updates the node boxes in place without allocating (the topology is
-// kept, so it loosens as boxes drift far; build() again to retighten). Queries are const and
-// allocate nothing.
+// Queries are const and allocate nothing.
 class AabbTree {
  public:
   // Rebuilds over `boxes`; the id of a box is its index. Reuses the tree's storage.
   void build(std::span<const Aabb> boxes);
-  // New boxes for the same ids as the last build() (boxes.size() must match); allocates nothing.
-  void refit(std::span<const Aabb> boxes);
   [[nodiscard]] bool empty() const { return nodes_.empty(); }
 
   // Calls visit(id) for every box overlapping `query` until visit returns false; returns false

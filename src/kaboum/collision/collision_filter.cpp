@@ -6,16 +6,6 @@
 
 namespace kaboum::collision {
 
-void CollisionFilter::resize(std::size_t bodyCount) {
-  std::vector<std::uint8_t> resized(bodyCount * bodyCount, 0);
-  const std::size_t kept = std::min(bodyCount, size_);
-  for (std::size_t a = 0; a < kept; ++a) {
-    for (std::size_t b = 0; b < kept; ++b) resized[a * bodyCount + b] = allowed_[a * size_ + b];
-  }
-  allowed_ = std::move(resized);
-  size_ = bodyCount;
-}
-
 void CollisionFilter::allow(std::size_t a, std::size_t b, bool allowed) {
   if (a >= size_ || b >= size_) {
     throw std::out_of_range("collision filter: body index " + std::to_string(std::max(a, b)) +

@@ -1,5 +1,5 @@
-// Pairs of bodies exempt from collision checks: adjacent robot links, an attached object and the
-// link that holds it, and pairs the user allows (issue 3, "collision filtering").
+// Pairs of a robot's link parts exempt from collision checks (thesis §4.3): adjacent links and
+// pairs the user allows. Held objects follow RobotCollisionModel::checksPair instead.
 #pragma once
 
 #include <cstddef>
@@ -8,14 +8,14 @@
 
 namespace kaboum::collision {
 
-// Symmetric allowed-collision matrix over body indices [0, size()). A pair is checked unless it
-// is allowed; a body is never checked against itself.
+// Symmetric allowed-collision matrix over body indices [0, size()), fixed in size. A pair is
+// checked unless it is allowed; a body is never checked against itself.
 class CollisionFilter {
  public:
-  explicit CollisionFilter(std::size_t bodyCount = 0) { resize(bodyCount); }
+  // Every pair of `bodyCount` bodies checked.
+  explicit CollisionFilter(std::size_t bodyCount = 0)
+      : size_(bodyCount), allowed_(bodyCount * bodyCount, 0) {}
 
-  // Keeps the entries of bodies below the new size; new bodies start with every pair checked.
-  void resize(std::size_t bodyCount);
   [[nodiscard]] std::size_t size() const { return size_; }
 
   // Exempts the pair (a, b) from checks, or checks it again. Throws std::out_of_range for an

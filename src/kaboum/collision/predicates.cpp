@@ -20,10 +20,11 @@ bool isInside(const CollisionBody& object, const Pose& objectPose, const ConvexC
   return true;
 }
 
-bool isOnSupportSurface(const CollisionScene& scene, std::size_t object, double drop, double band) {
+bool isOnSupportSurface(const CollisionScene& scene, std::span<const Placement> state,
+                        std::size_t object, double drop, double band) {
   const CollisionBody& body = scene.body(object);
-  const Pose& pose = scene.pose(object);
-  if (scene.firstCollision(body, pose, 0.0, object)) return false;
+  const Pose& pose = scene.pose(object, state);
+  if (scene.firstCollision(state, body, pose, 0.0, object)) return false;
   double lowest = std::numeric_limits<double>::infinity();
   for (std::size_t p = 0; p < body.pieceCount(); ++p) {
     for (const Vec3& v : body.piece(p).vertices()) lowest = std::min(lowest, (pose * v).z());
@@ -34,7 +35,9 @@ bool isOnSupportSurface(const CollisionScene& scene, std::size_t object, double 
       if (top.z() > lowest + band) continue;
       const SegmentSupport probe{top, top - Vec3(0, 0, drop)};
       const Aabb box{probe.b, probe.a};
-      if (!scene.firstWithin(probe, box, probe.center(), 0.5 * drop, 0.0, object)) return false;
+      if (!scene.firstWithin(state, probe, box, probe.center(), 0.5 * drop, 0.0, object)) {
+        return false;
+      }
     }
   }
   return true;

@@ -35,11 +35,12 @@ class ConvexContainer {
 bool isInside(const CollisionBody& object, const Pose& objectPose, const ConvexContainer& container,
               const Pose& containerPose);
 
-// Seed 003's isOnSupportSurface for scene object `object`: the object is collision-free (no other
-// active object within distance 0 of its pieces) and every vertical segment of length `drop`
-// going down (−z) from its lowest vertices (those within `band` of the lowest one) touches another
-// object. Allocates nothing.
-bool isOnSupportSurface(const CollisionScene& scene, std::size_t object, double drop, double band);
+// Seed 003's isOnSupportSurface for scene object `object` at its pose in `state`: the object is
+// collision-free (no other object present in `state` within distance 0 of its pieces) and every
+// vertical segment of length `drop` going down (−z) from its lowest vertices (those within `band`
+// of the lowest one) touches another present object. Allocates nothing.
+bool isOnSupportSurface(const CollisionScene& scene, std::span<const Placement> state,
+                        std::size_t object, double drop, double band);
 
 // A line segment [a, b] as a support mapping (the downward probes of isOnSupportSurface).
 struct SegmentSupport {

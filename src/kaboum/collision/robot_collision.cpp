@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 #include "kaboum/core/error.hpp"
 #include "kaboum/geometry/convex_hull.hpp"
@@ -124,10 +125,10 @@ RobotCollisionModel::RobotCollisionModel(RobotModel model, const LinkMeshes& mes
     if (pieces.empty()) continue;
     partOfLink[l] = static_cast<int>(parts_.size());
     parts_.push_back({std::make_shared<const CollisionBody>(pieces, "link " + links[l].name),
-                      static_cast<int>(l), Pose::Identity(), true, false});
+                      static_cast<int>(l), Pose::Identity()});
   }
-  filter_.resize(parts_.size());
-  for (const Part& part : parts_) {
+  filter_ = CollisionFilter(parts_.size());
+  for (const Attachment& part : parts_) {
     int link = part.link;
     while (links[static_cast<std::size_t>(link)].parentJoint >= 0) {
       link =
@@ -143,28 +144,13 @@ RobotCollisionModel::RobotCollisionModel(RobotModel model, const LinkMeshes& mes
   }
 }
 
-double RobotCollisionModel::linkReach(int link) const {
-  double reach = 0;
-  for (const Part& part : parts_) {
-    if (part.active && part.link == link) {
-      reach = std::max(reach, part.inLink.translation().norm() + part.body->reach());
+void RobotCollisionModel::checkHeld(std::span<const Attachment> held) const {
+  for (const Attachment& object : held) {
+    if (object.link < 0 || static_cast<std::size_t>(object.link) >= model_.links().size()) {
+      throw std::out_of_range("held object on no link " + std::to_string(object.link));
     }
+    if (!object.body) throw std::invalid_argument("held object without a body");
   }
-  return reach;
-}
-
-std::size_t RobotCollisionModel::attach(BodyPtr object, int link, const Pose& inLink) {
-  if (link < 0 || static_cast<std::size_t>(link) >= model_.links().size()) {
-    throw std::out_of_range("attach: no link " + std::to_string(link));
-  }
-  parts_.push_back(
-      {std::move(object), link, inLink, true, inLink.matrix() != Pose::Identity().matrix()});
-  const std::size_t index = parts_.size() - 1;
-  filter_.resize(parts_.size());
-  for (std::size_t i = 0; i < index; ++i) {
-    if (parts_[i].link == link) filter_.allow(i, index);
-  }
-  return index;
 }
 
 std::size_t RobotCollisionModel::allowPairsCollidingAt(std::span<const Pose> linkPoses,
@@ -172,7 +158,7 @@ std::size_t RobotCollisionModel::allowPairsCollidingAt(std::span<const Pose> lin
   std::size_t allowed = 0;
   for (std::size_t i = 0; i < parts_.size(); ++i) {
     for (std::size_t j = i + 1; j < parts_.size(); ++j) {
-      if (parts_[i].active && parts_[j].active && !filter_.allowed(i, j) &&
+      if (!filter_.allowed(i, j) &&
           bodiesCollide(*parts_[i].body, partPose(i, linkPoses), *parts_[j].body,
                         partPose(j, linkPoses), margin)) {
         filter_.allow(i, j);
@@ -183,13 +169,16 @@ std::size_t RobotCollisionModel::allowPairsCollidingAt(std::span<const Pose> lin
   return allowed;
 }
 
-bool RobotCollisionModel::selfCollides(std::span<const Pose> linkPoses, double margin) const {
-  for (std::size_t i = 0; i < parts_.size(); ++i) {
-    if (!parts_[i].active) continue;
-    const Pose poseI = partPose(i, linkPoses);
-    for (std::size_t j = i + 1; j < parts_.size(); ++j) {
-      if (parts_[j].active && !filter_.allowed(i, j) &&
-          bodiesCollide(*parts_[i].body, poseI, *parts_[j].body, partPose(j, linkPoses), margin)) {
+bool RobotCollisionModel::selfCollides(std::span<const Pose> linkPoses,
+                                       std::span<const Attachment> held, double margin) const {
+  checkHeld(held);
+  const std::size_t count = partCount(held);
+  for (std::size_t i = 0; i < count; ++i) {
+    const CollisionBody& bodyI = *part(i, held).body;
+    const Pose poseI = partPose(i, linkPoses, held);
+    for (std::size_t j = i + 1; j < count; ++j) {
+      if (checksPair(i, j, held) &&
+          bodiesCollide(bodyI, poseI, *part(j, held).body, partPose(j, linkPoses, held), margin)) {
         return true;
       }
     }
@@ -197,12 +186,13 @@ bool RobotCollisionModel::selfCollides(std::span<const Pose> linkPoses, double m
   return false;
 }
 
-std::optional<std::size_t> RobotCollisionModel::firstSceneCollision(std::span<const Pose> linkPoses,
-                                                                    const CollisionScene& scene,
-                                                                    double margin) const {
-  for (std::size_t i = 0; i < parts_.size(); ++i) {
-    if (!parts_[i].active) continue;
-    if (auto hit = scene.firstCollision(*parts_[i].body, partPose(i, linkPoses), margin)) {
+std::optional<std::size_t> RobotCollisionModel::firstSceneCollision(
+    std::span<const Pose> linkPoses, std::span<const Attachment> held, const CollisionScene& scene,
+    std::span<const Placement> sceneState, double margin) const {
+  checkHeld(held);
+  for (std::size_t i = 0; i < partCount(held); ++i) {
+    if (auto hit = scene.firstCollision(sceneState, *part(i, held).body,
+                                        partPose(i, linkPoses, held), margin)) {
       return hit;
     }
   }

@@ -1,6 +1,7 @@
-// A robot's collision geometry (issue 3, "robots plug in"): one body of convex pieces per link
-// built from its URDF collision shapes, attached (grasped) objects that move with a link,
-// self-collision with adjacency filtering, and robot-vs-scene checks.
+// A robot's collision geometry (thesis §4.3): one body of convex pieces per link built from its
+// URDF collision shapes, self-collision with adjacency filtering, and robot-vs-scene checks. The
+// model is built once and shared; a state's configuration (link poses) and held objects are
+// passed to every const query.
 #pragma once
 
 #include <map>
@@ -45,6 +46,16 @@ std::vector<std::vector<Vec3>> shapeConvexPieces(const CollisionShape& shape,
                                                  const LinkMeshes& meshes,
                                                  const LinkPieceOptions& options = {});
 
+// A body attached rigidly to a robot link, its frame at `inLink` in the link frame: a link's own
+// collision geometry (RobotCollisionModel::part, inLink the identity), or an object the robot
+// holds in one state (the `held` span of the queries). A held object is not checked against the
+// parts of its link nor against the other objects that link holds.
+struct Attachment {
+  BodyPtr body;
+  int link = -1;
+  Pose inLink = Pose::Identity();
+};
+
 class RobotCollisionModel {
  public:
   // One part per link with collision geometry, mesh shapes taken from `meshes`. Parts of a link
@@ -53,31 +64,32 @@ class RobotCollisionModel {
   RobotCollisionModel(RobotModel model, const LinkMeshes& meshes,
                       const LinkPieceOptions& pieces = {});
 
-  struct Part {
-    BodyPtr body;
-    int link = -1;                   // the link whose pose moves it
-    Pose inLink = Pose::Identity();  // body frame in the link frame
-    bool active = true;              // detached objects stay as inactive parts
-    bool offset = false;             // inLink is not the identity
-  };
-
   [[nodiscard]] const RobotModel& model() const { return model_; }
-  [[nodiscard]] std::size_t partCount() const { return parts_.size(); }
-  [[nodiscard]] const Part& part(std::size_t i) const { return parts_[i]; }
-  // Pairs of parts never checked for self-collision; add allowed pairs here.
+  // The parts of the robot holding the objects `held`: its link parts (indices below
+  // partCount()), then one part per held object.
+  [[nodiscard]] std::size_t partCount(std::span<const Attachment> held = {}) const {
+    return parts_.size() + held.size();
+  }
+  [[nodiscard]] const Attachment& part(std::size_t i, std::span<const Attachment> held = {}) const {
+    return i < parts_.size() ? parts_[i] : held[i - parts_.size()];
+  }
+  // Pairs of link parts never checked for self-collision; add allowed pairs here while building.
   [[nodiscard]] CollisionFilter& filter() { return filter_; }
   [[nodiscard]] const CollisionFilter& filter() const { return filter_; }
-  // Allows every active pair within `margin` at these link poses and returns how many: call it at
-  // a configuration known to be free (e.g. home), where the bounding pieces of links around a
-  // short link (the KR5's forearm and palm around its wrist) overlap.
+  // Allows every pair of link parts within `margin` at these link poses and returns how many:
+  // call it at a configuration known to be free (e.g. home), where the bounding pieces of links
+  // around a short link (the KR5's forearm and palm around its wrist) overlap.
   std::size_t allowPairsCollidingAt(std::span<const Pose> linkPoses, double margin = 0.0);
-  // Largest vertex distance from the link origin over the link's active parts (Eq. 4.19's r).
-  [[nodiscard]] double linkReach(int link) const;
-
-  // Attaches a grasped object to `link` at `inLink`; it is not checked against that link.
-  // Returns its part index. Throws std::out_of_range for an unknown link.
-  std::size_t attach(BodyPtr object, int link, const Pose& inLink);
-  void detach(std::size_t part) { parts_.at(part).active = false; }
+  // Whether parts i != j of the robot holding `held` are checked against each other: two link
+  // parts unless the filter allows the pair; a held object against the parts of other links.
+  [[nodiscard]] bool checksPair(std::size_t i, std::size_t j,
+                                std::span<const Attachment> held) const {
+    if (i < parts_.size() && j < parts_.size()) return !filter_.allowed(i, j);
+    return part(i, held).link != part(j, held).link;
+  }
+  // Throws std::out_of_range for a held object on a link the model does not have, and
+  // std::invalid_argument for one without a body. Every query checks its `held` so.
+  void checkHeld(std::span<const Attachment> held) const;
 
   // Pose of the model root in the world (identity by default); every query applies it.
   void setBasePose(const Pose& base) {
@@ -86,27 +98,31 @@ class RobotCollisionModel {
   }
   [[nodiscard]] const Pose& basePose() const { return base_; }
 
-  // World pose of a part given the link poses from RobotModel::linkPoses().
-  [[nodiscard]] Pose partPose(std::size_t i, std::span<const Pose> linkPoses) const {
-    const Part& part = parts_[i];
+  // World pose of part i of the robot holding `held`, given the link poses from
+  // RobotModel::linkPoses().
+  [[nodiscard]] Pose partPose(std::size_t i, std::span<const Pose> linkPoses,
+                              std::span<const Attachment> held = {}) const {
+    const Attachment& part = this->part(i, held);
     Pose pose = linkPoses[static_cast<std::size_t>(part.link)];
-    if (part.offset) pose = pose * part.inLink;
+    if (i >= parts_.size()) pose = pose * part.inLink;  // link parts are in their link frame
     if (!baseIsIdentity_) pose = base_ * pose;
     return pose;
   }
 
-  // Whether two unfiltered active parts come within `margin`. Allocates nothing.
-  [[nodiscard]] bool selfCollides(std::span<const Pose> linkPoses, double margin) const;
-  // The first scene object within `margin` of an active part, if any. Allocates nothing.
-  [[nodiscard]] std::optional<std::size_t> firstSceneCollision(std::span<const Pose> linkPoses,
-                                                               const CollisionScene& scene,
-                                                               double margin) const;
+  // Whether two checked parts of the robot holding `held` come within `margin`. Allocates nothing.
+  [[nodiscard]] bool selfCollides(std::span<const Pose> linkPoses, std::span<const Attachment> held,
+                                  double margin) const;
+  // The first object of `scene` in `sceneState` within `margin` of a part of the robot holding
+  // `held`, if any. Allocates nothing.
+  [[nodiscard]] std::optional<std::size_t> firstSceneCollision(
+      std::span<const Pose> linkPoses, std::span<const Attachment> held,
+      const CollisionScene& scene, std::span<const Placement> sceneState, double margin) const;
 
  private:
   RobotModel model_;
   Pose base_ = Pose::Identity();
   bool baseIsIdentity_ = true;
-  std::vector<Part> parts_;
+  std::vector<Attachment> parts_;
   CollisionFilter filter_;
 };
 

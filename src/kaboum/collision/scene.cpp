@@ -1,30 +1,61 @@
 #include "kaboum/collision/scene.hpp"
 
+#include <stdexcept>
+#include <string>
+
 namespace kaboum::collision {
 
 using namespace kaboum::geometry;
 
 std::size_t CollisionScene::add(BodyPtr body, const Pose& pose, std::string name) {
-  objects_.push_back({std::move(body), pose, std::move(name), true, 0});
-  rebuild();
+  const std::size_t id = objects_.size();
+  for (std::size_t p = 0; p < body->pieceCount(); ++p) {
+    fixedPieces_.push_back({id, p, pose * body->pieceBounds(p).centre});
+    fixedBoxes_.push_back(worldBox(body->piece(p), pose));
+  }
+  objects_.push_back({std::move(body), pose, std::move(name), kFixed});
+  tree_.build(fixedBoxes_);
+  return id;
+}
+
+std::size_t CollisionScene::addMovable(BodyPtr body, const Pose& initial, std::string name) {
+  objects_.push_back({std::move(body), initial, std::move(name), movable_.size()});
+  movable_.push_back(objects_.size() - 1);
   return objects_.size() - 1;
 }
 
-void CollisionScene::setPose(std::size_t object, const Pose& pose) {
-  Object& moved = objects_.at(object);
-  moved.pose = pose;
-  if (!moved.active) return;
-  for (std::size_t slot = moved.firstSlot; slot < moved.firstSlot + moved.body->pieceCount();
-       ++slot) {
-    slots_[slot].centre = pose * moved.body->pieceBounds(slots_[slot].piece).centre;
-    slotBoxes_[slot] = worldBox(moved.body->piece(slots_[slot].piece), pose);
+std::size_t CollisionScene::slot(std::size_t object) const {
+  const std::size_t slot = objects_.at(object).slot;
+  if (slot == kFixed) {
+    throw std::invalid_argument("scene: object " + std::to_string(object) + " (" +
+                                objects_[object].name + ") is a fixed obstacle, not movable");
   }
-  tree_.refit(slotBoxes_);
+  return slot;
 }
 
-void CollisionScene::setActive(std::size_t object, bool active) {
-  objects_.at(object).active = active;
-  rebuild();
+SceneState CollisionScene::initialState() const {
+  SceneState state;
+  state.reserve(movable_.size());
+  for (const std::size_t id : movable_) state.push_back({objects_[id].pose, true});
+  return state;
+}
+
+void CollisionScene::throwStateMismatch(std::size_t placements) const {
+  throw std::invalid_argument("scene: a state of " + std::to_string(placements) +
+                              " placements for " + std::to_string(movable_.size()) +
+                              " movable objects");
+}
+
+const Pose& CollisionScene::pose(std::size_t object, std::span<const Placement> state) const {
+  checkState(state);
+  const Object& found = objects_.at(object);
+  return found.slot == kFixed ? found.pose : state[found.slot].pose;
+}
+
+bool CollisionScene::present(std::size_t object, std::span<const Placement> state) const {
+  checkState(state);
+  const Object& found = objects_.at(object);
+  return found.slot == kFixed || state[found.slot].present;
 }
 
 // Exact world box of the posed vertices: tighter than a rotated local box.
@@ -38,51 +69,30 @@ Aabb CollisionScene::worldBox(const ConvexPolytope& piece, const Pose& pose) {
   return box;
 }
 
-void CollisionScene::rebuild() {
-  slots_.clear();
-  slotBoxes_.clear();
-  for (std::size_t o = 0; o < objects_.size(); ++o) {
-    Object& object = objects_[o];
-    object.firstSlot = slots_.size();
-    if (!object.active) continue;
-    for (std::size_t p = 0; p < object.body->pieceCount(); ++p) {
-      slots_.push_back({o, p, object.pose * object.body->pieceBounds(p).centre});
-      slotBoxes_.push_back(worldBox(object.body->piece(p), object.pose));
-    }
-  }
-  tree_.build(slotBoxes_);
-}
-
-std::optional<std::size_t> CollisionScene::firstCollision(const CollisionBody& body,
+std::optional<std::size_t> CollisionScene::firstCollision(std::span<const Placement> state,
+                                                          const CollisionBody& body,
                                                           const Pose& pose, double margin,
                                                           std::optional<std::size_t> ignore) const {
   if (body.pieceCount() == 1) {
     const PieceBounds& bounds = body.pieceBounds(0);
-    return firstWithin(TransformedSupport(body.piece(0), pose), transformedAabb(bounds.box, pose),
-                       pose * bounds.centre, bounds.radius, margin, ignore);
+    return firstWithin(state, TransformedSupport(body.piece(0), pose),
+                       transformedAabb(bounds.box, pose), pose * bounds.centre, bounds.radius,
+                       margin, ignore);
   }
-  // One scene-tree query for the whole body; each obstacle piece found, placed in the body's
+  // One broad-phase pass for the whole body; each obstacle piece found, placed in the body's
   // frame, then queries the body's piece tree (pieceWithinBody, as bodiesCollide does).
-  const Eigen::Matrix3d toBody = pose.linear().transpose();
   const PieceBounds& own = body.bounds();
   std::optional<std::size_t> hit;
-  tree_.forEachOverlapping(
-      transformedAabb(own.box, pose).inflated(margin), [&](std::uint32_t slotId) {
-        const Slot& slot = slots_[slotId];
-        if (slot.object == ignore) return true;
-        const Object& object = objects_[slot.object];
-        const PieceBounds& bounds = object.body->pieceBounds(slot.piece);
-        if (!spheresWithin(own.centre, own.radius, toBody * (slot.centre - pose.translation()),
-                           bounds.radius, margin)) {
-          return true;
-        }
-        if (!pieceWithinBody(body, object.body->piece(slot.piece), bounds,
-                             inFrameOf(pose, object.pose), margin)) {
-          return true;
-        }
-        hit = slot.object;
-        return false;
-      });
+  forEachPieceNear(state, transformedAabb(own.box, pose), pose * own.centre, own.radius, margin,
+                   ignore, [&](std::size_t object, std::size_t piece, const Pose& objectPose) {
+                     const CollisionBody& obstacle = *objects_[object].body;
+                     if (!pieceWithinBody(body, obstacle.piece(piece), obstacle.pieceBounds(piece),
+                                          inFrameOf(pose, objectPose), margin)) {
+                       return true;
+                     }
+                     hit = object;
+                     return false;
+                   });
   return hit;
 }
 

@@ -12,14 +12,14 @@ RobotSweep::RobotSweep(const RobotCollisionModel& robot)
     : robot_(robot), chains_(linkSweepChains(robot.model())) {}
 
 std::size_t RobotSweep::sample(std::span<const double> qa, std::span<const double> qb,
-                               double epsilon) {
+                               std::span<const Attachment> held, double epsilon) {
+  robot_.checkHeld(held);
   const RobotModel& model = robot_.model();
   const std::size_t links = model.links().size();
-  subdivisions_.assign(robot_.partCount(), 0);
+  subdivisions_.assign(robot_.partCount(held), 0);
   unsigned finest = 1;
-  for (std::size_t i = 0; i < robot_.partCount(); ++i) {
-    const auto& part = robot_.part(i);
-    if (!part.active) continue;
+  for (std::size_t i = 0; i < robot_.partCount(held); ++i) {
+    const Attachment& part = robot_.part(i, held);
     const int n = sweepSubdivisions(chains_[static_cast<std::size_t>(part.link)], qa, qb,
                                     part.inLink.translation().norm() + part.body->reach(), epsilon);
     const unsigned rounded = std::bit_ceil(static_cast<unsigned>(n));
@@ -37,10 +37,11 @@ std::size_t RobotSweep::sample(std::span<const double> qa, std::span<const doubl
   return finest;
 }
 
-void RobotSweep::sweptPieces(std::size_t part, std::span<const Pose> start,
-                             std::span<const Pose> end, std::vector<Piece>& out) const {
-  const CollisionBody& body = *robot_.part(part).body;
-  const Pose from = robot_.partPose(part, start), to = robot_.partPose(part, end);
+void RobotSweep::sweptPieces(std::size_t part, std::span<const Attachment> held,
+                             std::span<const Pose> start, std::span<const Pose> end,
+                             std::vector<Piece>& out) const {
+  const CollisionBody& body = *robot_.part(part, held).body;
+  const Pose from = robot_.partPose(part, start, held), to = robot_.partPose(part, end, held);
   out.clear();
   for (std::size_t p = 0; p < body.pieceCount(); ++p) {
     const PieceBounds& bounds = body.pieceBounds(p);
@@ -54,16 +55,16 @@ void RobotSweep::sweptPieces(std::size_t part, std::span<const Pose> start,
 }
 
 std::span<const RobotSweep::Piece> RobotSweep::sweep(std::span<const double> qa,
-                                                     std::span<const double> qb, double epsilon) {
-  const std::size_t finest = sample(qa, qb, epsilon);
+                                                     std::span<const double> qb,
+                                                     std::span<const Attachment> held,
+                                                     double epsilon) {
+  const std::size_t finest = sample(qa, qb, held, epsilon);
   pieces_.clear();
-  for (std::size_t i = 0; i < robot_.partCount(); ++i) {
-    const auto& part = robot_.part(i);
-    if (!part.active) continue;
+  for (std::size_t i = 0; i < robot_.partCount(held); ++i) {
     const std::size_t n = static_cast<std::size_t>(subdivisions_[i]);
     const std::size_t stride = finest / n;
     for (std::size_t k = 0; k < n; ++k) {
-      sweptPieces(i, samplePoses(k * stride), samplePoses((k + 1) * stride), piecesI_);
+      sweptPieces(i, held, samplePoses(k * stride), samplePoses((k + 1) * stride), piecesI_);
       pieces_.insert(pieces_.end(), piecesI_.begin(), piecesI_.end());
     }
   }
@@ -72,10 +73,12 @@ std::span<const RobotSweep::Piece> RobotSweep::sweep(std::span<const double> qa,
 
 std::optional<std::size_t> RobotSweep::firstSceneCollision(std::span<const double> qa,
                                                            std::span<const double> qb,
+                                                           std::span<const Attachment> held,
                                                            const CollisionScene& scene,
+                                                           std::span<const Placement> sceneState,
                                                            double margin, double epsilon) {
-  for (const Piece& piece : sweep(qa, qb, epsilon)) {
-    if (auto hit = scene.firstWithin(piece.shape, piece.box, piece.centre, piece.radius,
+  for (const Piece& piece : sweep(qa, qb, held, epsilon)) {
+    if (auto hit = scene.firstWithin(sceneState, piece.shape, piece.box, piece.centre, piece.radius,
                                      margin + epsilon)) {
       return hit;
     }
@@ -104,11 +107,11 @@ bool anyPiecesWithin(std::span<const RobotSweep::Piece> a, std::span<const Robot
 
 }  // namespace
 
-bool RobotSweep::partsMeetDuring(std::size_t i, std::size_t j, std::span<const double> qa,
-                                 std::span<const double> qb, const Interval& interval, int depth,
-                                 double reach) {
-  sweptPieces(i, interval.start, interval.end, piecesI_);
-  sweptPieces(j, interval.start, interval.end, piecesJ_);
+bool RobotSweep::partsMeetDuring(std::size_t i, std::size_t j, std::span<const Attachment> held,
+                                 std::span<const double> qa, std::span<const double> qb,
+                                 const Interval& interval, int depth, double reach) {
+  sweptPieces(i, held, interval.start, interval.end, piecesI_);
+  sweptPieces(j, held, interval.start, interval.end, piecesJ_);
   if (!anyPiecesWithin(piecesI_, piecesJ_, reach)) return false;
   if (depth == kSelfRefinements) return true;
   // Halving a sub-step keeps its chord error within ε (the bound of Eq. 4.19 only shrinks).
@@ -117,28 +120,28 @@ bool RobotSweep::partsMeetDuring(std::size_t i, std::size_t j, std::span<const d
   const double tm = 0.5 * (interval.t0 + interval.t1);
   for (std::size_t v = 0; v < q_.size(); ++v) q_[v] = qa[v] + tm * (qb[v] - qa[v]);
   robot_.model().linkPoses(q_, middle);
-  return partsMeetDuring(i, j, qa, qb, {interval.t0, tm, interval.start, middle}, depth + 1,
+  return partsMeetDuring(i, j, held, qa, qb, {interval.t0, tm, interval.start, middle}, depth + 1,
                          reach) ||
-         partsMeetDuring(i, j, qa, qb, {tm, interval.t1, middle, interval.end}, depth + 1, reach);
+         partsMeetDuring(i, j, held, qa, qb, {tm, interval.t1, middle, interval.end}, depth + 1,
+                         reach);
 }
 
-bool RobotSweep::selfCollides(std::span<const double> qa, std::span<const double> qb, double margin,
-                              double epsilon) {
-  const std::size_t finest = sample(qa, qb, epsilon);
+bool RobotSweep::selfCollides(std::span<const double> qa, std::span<const double> qb,
+                              std::span<const Attachment> held, double margin, double epsilon) {
+  const std::size_t finest = sample(qa, qb, held, epsilon);
   midPoses_.resize(static_cast<std::size_t>(kSelfRefinements) * robot_.model().links().size());
   const double reach = margin + 2 * epsilon;
-  const CollisionFilter& filter = robot_.filter();
-  for (std::size_t i = 0; i < robot_.partCount(); ++i) {
-    if (!robot_.part(i).active) continue;
-    for (std::size_t j = i + 1; j < robot_.partCount(); ++j) {
-      if (!robot_.part(j).active || filter.allowed(i, j)) continue;
+  const std::size_t count = robot_.partCount(held);
+  for (std::size_t i = 0; i < count; ++i) {
+    for (std::size_t j = i + 1; j < count; ++j) {
+      if (!robot_.checksPair(i, j, held)) continue;
       const auto steps = static_cast<std::size_t>(std::max(subdivisions_[i], subdivisions_[j]));
       const std::size_t stride = finest / steps;
       for (std::size_t k = 0; k < steps; ++k) {
         const Interval interval{static_cast<double>(k * stride) / static_cast<double>(finest),
                                 static_cast<double>((k + 1) * stride) / static_cast<double>(finest),
                                 samplePoses(k * stride), samplePoses((k + 1) * stride)};
-        if (partsMeetDuring(i, j, qa, qb, interval, 0, reach)) {
+        if (partsMeetDuring(i, j, held, qa, qb, interval, 0, reach)) {
           return true;
         }
       }
@@ -148,10 +151,11 @@ bool RobotSweep::selfCollides(std::span<const double> qa, std::span<const double
 }
 
 bool sweptVolumesCollide(RobotSweep& a, std::span<const double> qa0, std::span<const double> qa1,
-                         RobotSweep& b, std::span<const double> qb0, std::span<const double> qb1,
-                         double margin, double epsilon) {
-  const auto piecesA = a.sweep(qa0, qa1, epsilon);
-  const auto piecesB = b.sweep(qb0, qb1, epsilon);
+                         std::span<const Attachment> heldA, RobotSweep& b,
+                         std::span<const double> qb0, std::span<const double> qb1,
+                         std::span<const Attachment> heldB, double margin, double epsilon) {
+  const auto piecesA = a.sweep(qa0, qa1, heldA, epsilon);
+  const auto piecesB = b.sweep(qb0, qb1, heldB, epsilon);
   return anyPiecesWithin(piecesA, piecesB, margin + 2 * epsilon);
 }
 

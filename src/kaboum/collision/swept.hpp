@@ -39,11 +39,13 @@ class SweptSupport {
 using SweptPiece = SweptSupport<TransformedSupport>;
 static_assert(SupportMapping<SweptPiece>);
 
-// Swept pieces of a robot along straight joint-space motions, with reusable buffers: after the
-// first motions of a given length no query allocates.
+// Swept pieces of a robot along straight joint-space motions: a caller-owned workspace over the
+// shared robot model, whose buffers grow to the longest motion and the most held objects seen;
+// after that no query allocates. An answer depends only on the query's arguments (the objects
+// `held` during the motion come with it), so one sweep serves any sequence of states.
 class RobotSweep {
  public:
-  // Holds a reference: `robot` must outlive it (attachments made later are included).
+  // Holds a reference: `robot` must outlive it.
   explicit RobotSweep(const RobotCollisionModel& robot);
 
   struct Piece {
@@ -51,32 +53,36 @@ class RobotSweep {
     Aabb box;     // world box of both poses
     Vec3 centre;  // bounding sphere of both poses
     double radius = 0;
-    std::size_t part = 0;
+    std::size_t part = 0;  // RobotCollisionModel::part(part, held)
   };
 
   // Splits qa -> qb per part with sweepSubdivisions() (rounded up to powers of two, so that all
   // parts share the forward-kinematics samples) and returns the swept pieces: every point of every
-  // active part along the motion lies within `epsilon` of one of them.
+  // part of the robot holding `held` along the motion lies within `epsilon` of one of them.
   std::span<const Piece> sweep(std::span<const double> qa, std::span<const double> qb,
-                               double epsilon);
+                               std::span<const Attachment> held, double epsilon);
 
-  // Definition 1 (2): the first scene object within margin + ε of the swept volume of qa -> qb.
-  // Never misses an object the robot comes within `margin` of anywhere along the motion.
+  // Definition 1 (2): the first object of `scene` in `sceneState` within margin + ε of the swept
+  // volume of qa -> qb, holding `held`. Never misses an object the robot comes within `margin` of
+  // anywhere along the motion.
   std::optional<std::size_t> firstSceneCollision(std::span<const double> qa,
                                                  std::span<const double> qb,
-                                                 const CollisionScene& scene, double margin,
-                                                 double epsilon);
+                                                 std::span<const Attachment> held,
+                                                 const CollisionScene& scene,
+                                                 std::span<const Placement> sceneState,
+                                                 double margin, double epsilon);
 
   // Swept self-collision (§4.5, Eq. 4.19–4.22 applied to pairs of the robot's own parts, with its
-  // collision filter): whether two active parts the robot's filter does not exempt come within
-  // `margin` of each other at the same instant of qa -> qb. Each pair is compared sub-step by
-  // sub-step over the finer of its two subdivisions, with both parts swept over the same time
-  // interval and queried at margin + 2ε; an interval whose swept pieces meet is bisected (fresh
-  // forward kinematics at its middle, still within ε) up to kSelfRefinements times, since two
-  // parts may sweep through the same place at different times of one sub-step. Never misses a
-  // self-collision anywhere along the motion; allocates nothing once the buffers have grown.
-  bool selfCollides(std::span<const double> qa, std::span<const double> qb, double margin,
-                    double epsilon);
+  // collision filter): whether two parts of the robot holding `held` that it checks against each
+  // other (RobotCollisionModel::checksPair) come within `margin` at the same instant of qa -> qb.
+  // Each pair is compared sub-step by sub-step over the finer of its two subdivisions, with both
+  // parts swept over the same time interval and queried at margin + 2ε; an interval whose swept
+  // pieces meet is bisected (fresh forward kinematics at its middle, still within ε) up to
+  // kSelfRefinements times, since two parts may sweep through the same place at different times of
+  // one sub-step. Never misses a self-collision anywhere along the motion; allocates nothing once
+  // the buffers have grown.
+  bool selfCollides(std::span<const double> qa, std::span<const double> qb,
+                    std::span<const Attachment> held, double margin, double epsilon);
   static constexpr int kSelfRefinements = 6;
 
   [[nodiscard]] const RobotCollisionModel& robot() const { return robot_; }
@@ -89,23 +95,24 @@ class RobotSweep {
     return {poses_.data() + sample * links, links};
   }
   // Subdivisions per part and forward kinematics at the finest one's samples; returns the finest.
-  std::size_t sample(std::span<const double> qa, std::span<const double> qb, double epsilon);
+  std::size_t sample(std::span<const double> qa, std::span<const double> qb,
+                     std::span<const Attachment> held, double epsilon);
   struct Interval {  // [t0, t1] of the motion qa -> qb, with the link poses at both ends
     double t0, t1;
     std::span<const Pose> start, end;
   };
   // Whether parts i and j, both swept over `interval` of qa -> qb, come within `reach`, refining
   // by bisection from `depth` on.
-  bool partsMeetDuring(std::size_t i, std::size_t j, std::span<const double> qa,
-                       std::span<const double> qb, const Interval& interval, int depth,
-                       double reach);
+  bool partsMeetDuring(std::size_t i, std::size_t j, std::span<const Attachment> held,
+                       std::span<const double> qa, std::span<const double> qb,
+                       const Interval& interval, int depth, double reach);
   // The swept pieces of part `part` between two link-pose sets, into `out` (resized).
-  void sweptPieces(std::size_t part, std::span<const Pose> start, std::span<const Pose> end,
-                   std::vector<Piece>& out) const;
+  void sweptPieces(std::size_t part, std::span<const Attachment> held, std::span<const Pose> start,
+                   std::span<const Pose> end, std::vector<Piece>& out) const;
 
   const RobotCollisionModel& robot_;
   std::vector<LinkSweepChain> chains_;
-  std::vector<int> subdivisions_;  // per part
+  std::vector<int> subdivisions_;  // per part of the robot holding the objects of the query
   std::vector<Pose> poses_;        // samples x links
   std::vector<Pose> midPoses_;     // kSelfRefinements x links: bisection samples, one per depth
   std::vector<Piece> piecesI_, piecesJ_;  // scratch: one part's pieces over one sub-step
@@ -114,10 +121,12 @@ class RobotSweep {
   std::size_t samples_ = 0;
 };
 
-// Definition 1 (3): whether the swept volumes of two motions (each bounded at `epsilon`) come
-// within `margin` (queried at margin + 2ε). Allocates only through the sweeps' buffers.
+// Definition 1 (3): whether the swept volumes of two motions (each bounded at `epsilon`; robot a
+// holding `heldA`, b holding `heldB`) come within `margin` (queried at margin + 2ε). Allocates
+// only through the sweeps' buffers.
 bool sweptVolumesCollide(RobotSweep& a, std::span<const double> qa0, std::span<const double> qa1,
-                         RobotSweep& b, std::span<const double> qb0, std::span<const double> qb1,
-                         double margin, double epsilon);
+                         std::span<const Attachment> heldA, RobotSweep& b,
+                         std::span<const double> qb0, std::span<const double> qb1,
+                         std::span<const Attachment> heldB, double margin, double epsilon);
 
 }  // namespace kaboum::collision

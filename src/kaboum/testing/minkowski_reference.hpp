@@ -1,5 +1,5 @@
 // Exact (slow) reference for convex–convex queries: the qhull hull of the Minkowski difference
-// A ⊕ (−B), against which the narrow phase and the reference libraries are verified (issue 3).
+// A ⊕ (−B), against which the narrow phase and the reference libraries are verified.
 #pragma once
 
 #include <span>

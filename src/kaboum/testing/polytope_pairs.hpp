@@ -1,5 +1,5 @@
 // Random convex polytope pairs, deterministic for a seed: the shared workload of the narrow-phase
-// tests, `kaboum-compare collision` and bench_collision_pairs (issue 3, "Benchmarks").
+// tests, `kaboum-compare collision` and bench_collision_pairs.
 #pragma once
 
 #include <Eigen/Geometry>

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <string>
 
 #include "kaboum/kinematics/random_configuration.hpp"
 
@@ -20,7 +21,7 @@ Eigen::Quaterniond uniformRotation(std::mt19937_64& rng) {
 }
 
 CollisionScene randomObstacleScene(const Aabb& region, int count, int vertices, double halfSize,
-                                   std::uint64_t seed) {
+                                   std::uint64_t seed, int movable) {
   std::mt19937_64 rng(seed);
   CollisionScene scene;
   for (int i = 0; i < count; ++i) {
@@ -33,8 +34,13 @@ CollisionScene randomObstacleScene(const Aabb& region, int count, int vertices, 
     Pose pose(uniformRotation(rng));
     const Vec3 unit(uniformUnit(rng), uniformUnit(rng), uniformUnit(rng));
     pose.translation() = region.lo + unit.cwiseProduct(region.hi - region.lo);
-    scene.add(std::make_shared<const CollisionBody>(sets, "obstacle " + std::to_string(i)), pose,
-              "obstacle " + std::to_string(i));
+    const std::string name = "obstacle " + std::to_string(i);
+    auto body = std::make_shared<const CollisionBody>(sets, name);
+    if (i < count - movable) {
+      scene.add(std::move(body), pose, name);
+    } else {
+      scene.addMovable(std::move(body), pose, name);
+    }
   }
   return scene;
 }
