@@ -1,6 +1,6 @@
-// Full-robot collision checks: the KR5's convex pieces against 50 random convex
-// obstacles, self-collision, swept motions, swept self-collision and isInside. The side-by-side
-// comparison with FCL is `kaboum-compare collision --section robot`
+// The KR5's robot-level predicates beyond the scene check: self-collision, swept motions, swept
+// self-collision and isInside, among 50 random convex obstacles. The full-robot scene check is
+// benchmarked once, side by side with FCL: `kaboum-compare collision --section robot`
 // (bench/compare/bench_full_robot.cpp).
 #include <benchmark/benchmark.h>
 
@@ -50,17 +50,6 @@ const Kr5World& world() {
   static const Kr5World instance;
   return instance;
 }
-
-void BM_Kr5SceneCheck(benchmark::State& state) {
-  const Kr5World& w = world();
-  std::size_t i = 0, hits = 0;
-  for (auto _ : state) {
-    hits += w.robot.firstSceneCollision(w.poses[i++ % w.poses.size()], {}, w.scene, {}, 0.0)
-                .has_value();
-  }
-  state.counters["colliding"] = static_cast<double>(hits) / static_cast<double>(state.iterations());
-}
-BENCHMARK(BM_Kr5SceneCheck);
 
 void BM_Kr5SelfCheck(benchmark::State& state) {
   const Kr5World& w = world();
