@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "kaboum/core/error.hpp"
+#include "kaboum/core/worker_pool.hpp"
 #include "kaboum/geometry/mesh_analysis.hpp"
 #include "kaboum/geometry/surface_sampling.hpp"
 #include "kaboum/geometry/triangle_bvh.hpp"
@@ -17,20 +18,19 @@ namespace kaboum::geometry {
 
 namespace {
 
+// The threads of the sample loops: the caller and one worker kept for the process (the caller
+// alone on one core).
+WorkerPool& sampleWorkers() {
+  static WorkerPool workers(std::thread::hardware_concurrency() < 2 ? 1 : 2);
+  return workers;
+}
+
 // Runs work(i) for every i in [0, count), split into two contiguous halves on two threads when
 // there is enough work. Each call must only write its own output slot, so the split is invisible.
 template <class Work>
 void forEachIndex(std::size_t count, const Work& work) {
   constexpr std::size_t kMinimumPerThread = 4096;
-  if (count < 2 * kMinimumPerThread || std::thread::hardware_concurrency() < 2) {
-    for (std::size_t i = 0; i < count; ++i) work(i);
-    return;
-  }
-  const std::size_t half = count / 2;
-  std::jthread helper([&] {
-    for (std::size_t i = half; i < count; ++i) work(i);
-  });
-  for (std::size_t i = 0; i < half; ++i) work(i);
+  sampleWorkers().forEachIndex(count, kMinimumPerThread, work);
 }
 
 // A BVH whose input errors name the mesh's role ("original", "result").
