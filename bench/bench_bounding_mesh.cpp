@@ -1,4 +1,4 @@
-// Bounding mesh throughput and peak memory versus input size (issue 2's scaling table). Inputs are
+// Bounding mesh throughput and peak memory versus input size (the scaling table of docs/benchmarks.md). Inputs are
 // real meshes, enlarged by Loop subdivision. Run: build/release/bench/bench_bounding_mesh
 #include <benchmark/benchmark.h>
 #include <malloc.h>
@@ -99,7 +99,7 @@ BENCHMARK(BoundOuterTenPercent)
     ->Repetitions(3)
     ->ReportAggregatesOnly(true);
 
-// Issue 2's "no pathological slow case": the same number of contractions (2,000, taken off the
+// No pathological slow case: the same number of contractions (2,000, taken off the
 // rim) next to two vertices of valence `range(0)` (makeDoubleCone).
 void BoundNextToHighValence(benchmark::State& state) {
   const kaboum::geometry::TriangleMesh mesh =

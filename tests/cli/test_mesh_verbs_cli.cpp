@@ -83,7 +83,7 @@ TEST(BoundCli, CheckRejectsAnInsideOutResult) {
   EXPECT_FALSE(j["verified"].get<bool>());
 }
 
-// Issue 2's promise: at 1% of the diagonal, closed inputs above 10^4 vertices shrink 10x.
+// The documented reduction: at 1% of the diagonal, closed inputs above 10^4 vertices shrink 10x.
 // --polish lowers the distances without breaking the bound, with an --epsilon limit too.
 TEST(BoundCli, PolishLowersTheDistancesAndCheckVerifiesTheResult) {
   ScratchDir dir;

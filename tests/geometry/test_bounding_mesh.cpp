@@ -298,7 +298,7 @@ TEST(BoundingMesh, LazyQueueGivesTheEagerQueuesResultBitForBit) {
   }
 }
 
-// Issue 2's high-valence case: contractions next to vertices of valence 600–2,000 (the double
+// The high-valence case: contractions next to vertices of valence 600–2,000 (the double
 // cone's apexes, the fan centres of a cylinder's caps) go through the angular index of their stars
 // and keep every guarantee.
 TEST(BoundingMesh, HighValenceStarsKeepEveryGuarantee) {

@@ -26,10 +26,6 @@ struct BeliefHash {
   }
 };
 
-bool sameValue(double a, double b) {
-  return a == b || (std::isnan(a) && std::isnan(b));
-}
-
 struct LimitReached {
   PlannerStatus status;
 };

@@ -285,11 +285,7 @@ bool KnowledgeTask::kvHolds(AtomId atom, const Belief& belief) {
   return kvBase_[atom] != kNoBase && fluentKnown(kvBase_[atom], belief);
 }
 
-namespace {
-bool sameValue(double a, double b) {
-  return a == b || (std::isnan(a) && std::isnan(b));
-}
-}  // namespace
+bool sameValue(double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); }
 
 bool KnowledgeTask::pendingValue(const Belief& belief, FluentId& fluent, double& value) {
   summarize(belief);

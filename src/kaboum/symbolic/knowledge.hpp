@@ -22,6 +22,10 @@ namespace kaboum::symbolic {
 // Sorted ids of the worlds a knowledge state admits.
 using Belief = std::vector<std::uint32_t>;
 
+// Whether two fluent values are the same value (an undefined, NaN value equals itself), as Kv
+// sensing tells them apart.
+bool sameValue(double a, double b);
+
 // Ground knowledge-level task: worlds are packed classical states registered once; a knowledge
 // state (belief) is a sorted list of world ids. Kf(p) holds if p is true in every world, Kf(¬p) if
 // false in every world; Kw(p) if the auxiliary atom `(kw.p …)` (added by sensing) is true in every
