@@ -1,5 +1,6 @@
-// Bounding mesh throughput and peak memory versus input size (the scaling table of docs/benchmarks.md). Inputs are
-// real meshes, enlarged by Loop subdivision. Run: build/release/bench/bench_bounding_mesh
+// Bounding mesh throughput and peak memory versus input size (the scaling table of
+// docs/benchmarks.md). Inputs are real meshes, enlarged by Loop subdivision. Run:
+// build/release/bench/bench_bounding_mesh
 #include <benchmark/benchmark.h>
 #include <malloc.h>
 

@@ -1,5 +1,6 @@
-// `kaboum-compare verify-collision`: differential check of the bounded collision predicate (Definition 1
-// (1)) against FCL on the ORIGINAL triangle meshes, over random relative poses of real meshes.
+// `kaboum-compare verify-collision`: differential check of the bounded collision predicate
+// (Definition 1 (1)) against FCL on the ORIGINAL triangle meshes, over random relative poses of
+// real meshes.
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/math/bv/OBBRSS.h>
 #include <fcl/narrowphase/collision.h>

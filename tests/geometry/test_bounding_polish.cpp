@@ -89,9 +89,9 @@ TEST(BoundingPolish, KeepsTheSideAndTheShapeAndRaisesNeitherMaximum) {
   EXPECT_GT(relocations, 0u);  // the relocations were tried and kept somewhere
 }
 
-// The reference implementation's figures, outer 10% of the cow: 1.74% / 2.29% of the diagonal (original→result /
-// result→original). Algorithm 2 alone gives 2.13% / 3.43%, the sweeps 1.748% / 1.979%, the
-// relocations 1.363% / 1.928%.
+// The reference implementation's figures, outer 10% of the cow: 1.74% / 2.29% of the diagonal
+// (original→result / result→original). Algorithm 2 alone gives 2.13% / 3.43%, the sweeps 1.748%
+// / 1.979%, the relocations 1.363% / 1.928%.
 TEST(BoundingPolish, BringsTheCowsOuterTenPercentBoundBelowTheReference) {
   const TriangleMesh mesh = loadOriented(fs::path(kaboum::testing::dataFile("meshes/cow.obj")));
   BoundingMeshOptions options;

@@ -285,7 +285,9 @@ bool KnowledgeTask::kvHolds(AtomId atom, const Belief& belief) {
   return kvBase_[atom] != kNoBase && fluentKnown(kvBase_[atom], belief);
 }
 
-bool sameValue(double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); }
+bool sameValue(double a, double b) {
+  return a == b || (std::isnan(a) && std::isnan(b));
+}
 
 bool KnowledgeTask::pendingValue(const Belief& belief, FluentId& fluent, double& value) {
   summarize(belief);
