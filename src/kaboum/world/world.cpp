@@ -1,0 +1,276 @@
+#include "kaboum/world/world.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <stdexcept>
+
+#include "kaboum/core/error.hpp"
+#include "kaboum/io/mesh_io.hpp"
+#include "kaboum/io/urdf_loader.hpp"
+
+namespace kaboum::world {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string lowerCase(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+LinkPieceOptions pieceOptions(const SceneSettings& settings, const WorldOptions& options) {
+  LinkPieceOptions pieces;
+  pieces.decompose = options.pieces == MeshPieces::Decomposition;
+  if (settings.epsilonRelative) {
+    pieces.decomposition.epsilon = 0;
+    pieces.decomposition.epsilonPercent = 100 * settings.epsilon;
+  } else {
+    pieces.decomposition.epsilon = settings.epsilon;
+  }
+  pieces.decomposition.seed = settings.seed;
+  return pieces;
+}
+
+// The robot's URDF with every tool's hand shapes added to the tool link's collision geometry.
+RobotModel robotWithHands(const RobotSpec& spec) {
+  const RobotModel urdf = loadUrdf(spec.urdf);
+  std::vector<Link> links = urdf.links();
+  for (const ToolSpec& tool : spec.tools) {
+    if (!tool.hand) continue;
+    Link& link = links[static_cast<std::size_t>(urdf.findLink(tool.link).value())];
+    for (const Geometry& shape : tool.hand->shapes) link.collisions.push_back(shape.shape);
+  }
+  return {urdf.name(), std::move(links), urdf.joints()};
+}
+
+WorldRobot buildRobot(const RobotSpec& spec, const LinkPieceOptions& pieces) {
+  const Clock::time_point start = Clock::now();
+  RobotModel model = robotWithHands(spec);
+  const LinkMeshes meshes = readCollisionMeshes(model);
+  WorldRobot robot{spec.name, RobotCollisionModel(std::move(model), meshes, pieces), {}, 0};
+  robot.collision.setBasePose(spec.base);
+  for (const JointSpec& joint : spec.joints) robot.home.push_back(joint.home);
+  std::vector<Pose> poses(robot.collision.model().links().size());
+  robot.collision.model().linkPoses(robot.home, poses);
+  robot.collision.allowPairsCollidingAt(poses);
+  robot.preprocessingSeconds = secondsSince(start);
+  return robot;
+}
+
+BodyPtr buildObjectBody(const ObjectSpec& spec, const LinkPieceOptions& pieces) {
+  LinkMeshes meshes;
+  if (spec.geometry.shape.kind == CollisionShape::Kind::Mesh) {
+    meshes.emplace(spec.geometry.shape.meshPath, readMesh(spec.geometry.shape.meshPath));
+  }
+  return std::make_shared<const CollisionBody>(
+      shapeConvexPieces(spec.geometry.shape, meshes, pieces), "object " + spec.name);
+}
+
+double diagonal(const CollisionBody& body) {
+  return (body.bounds().box.hi - body.bounds().box.lo).norm();
+}
+
+// The smallest lift tried when a movable object rests on another (metres); lifts double from here.
+constexpr double kFirstLift = 1e-4;
+
+}  // namespace
+
+World::World(SceneDescription scene, const WorldOptions& options) : description_(std::move(scene)) {
+  const Clock::time_point start = Clock::now();
+  const LinkPieceOptions pieces = pieceOptions(description_.settings, options);
+  for (std::size_t r = 0; r < description_.robots.size(); ++r) {
+    robots_.push_back(buildRobot(description_.robots[r], pieces));
+    names_[lowerCase(description_.robots[r].name)] = {NamedEntity::Kind::Robot, r};
+  }
+
+  const auto& objects = description_.objects;
+  for (std::size_t o = 0; o < objects.size(); ++o) {
+    const Clock::time_point objectStart = Clock::now();
+    BodyPtr body = buildObjectBody(objects[o], pieces);
+    if (objects[o].movable) {
+      scene_.addMovable(std::move(body), objects[o].pose, objects[o].name);
+    } else {
+      scene_.add(std::move(body), objects[o].pose, objects[o].name);
+    }
+    names_[lowerCase(objects[o].name)] = {NamedEntity::Kind::Object, o};
+    objectSeconds_.push_back(secondsSince(objectStart));
+  }
+
+  // Movable objects start free, raised off what they rest on when touching is all that collides.
+  initialPlacements_ = scene_.initialState();
+  restingLift_.assign(objects.size(), 0.0);
+  for (std::size_t o = 0; o < objects.size(); ++o) {
+    if (!objects[o].movable) continue;
+    Pose& pose = initialPlacements_[scene_.slot(o)].pose;
+    const std::optional<std::size_t> hit =
+        scene_.firstCollision(initialPlacements_, scene_.body(o), pose, 0.0, o);
+    if (!hit) continue;
+    const double largestLift =
+        epsilonFor(diagonal(scene_.body(o))) + epsilonFor(diagonal(scene_.body(*hit))) + kFirstLift;
+    const Pose written = pose;
+    for (double lift = kFirstLift; lift <= largestLift && restingLift_[o] == 0; lift *= 2) {
+      Pose raised = written;
+      raised.translation().z() += lift;
+      if (!scene_.firstCollision(initialPlacements_, scene_.body(o), raised, 0.0, o)) {
+        pose = raised;
+        restingLift_[o] = lift;
+      }
+    }
+    if (restingLift_[o] == 0) {
+      throw InputError(objects[o].poseSource.message("object '" + objects[o].name +
+                                                     "' starts in collision with object '" +
+                                                     objects[*hit].name + "'"));
+    }
+  }
+  for (std::size_t l = 0; l < description_.locations.size(); ++l) {
+    names_[lowerCase(description_.locations[l].name)] = {NamedEntity::Kind::Location, l};
+  }
+  validateInitialState();
+  preprocessingSeconds_ = secondsSince(start);
+}
+
+void World::validateInitialState() {
+  const std::optional<Collision> collision = firstCollision(initialState());
+  if (!collision) return;
+  // Robots come first in the checks, and movable objects were already freed of each other.
+  const Party& party = collision->first;
+  const SourceLocation& source = party.kind == Party::Kind::Robot
+                                     ? description_.robots[party.index].homeSource
+                                     : description_.objects[party.index].poseSource;
+  const std::string what = party.kind == Party::Kind::Robot ? " at home" : " at its initial pose";
+  throw InputError(
+      source.message(describe(party) + what + " collides with " + describe(collision->second)));
+}
+
+std::optional<NamedEntity> World::find(const std::string& name) const {
+  const auto found = names_.find(lowerCase(name));
+  if (found == names_.end()) return std::nullopt;
+  return found->second;
+}
+
+double World::epsilonFor(double diagonal) const {
+  const SceneSettings& settings = description_.settings;
+  return settings.epsilonRelative ? settings.epsilon * diagonal : settings.epsilon;
+}
+
+GeometricState World::initialState() const {
+  GeometricState state;
+  for (const WorldRobot& robot : robots_) state.robots.push_back({robot.home, {}, {}});
+  state.placements = initialPlacements_;
+  return state;
+}
+
+QueryScratch World::scratch() const {
+  QueryScratch scratch;
+  for (const WorldRobot& robot : robots_) {
+    scratch.linkPoses.emplace_back(robot.collision.model().links().size());
+  }
+  return scratch;
+}
+
+void World::hold(GeometricState& state, std::size_t robot, int link, std::size_t object,
+                 const Pose& objectInLink) const {
+  checkState(state);
+  Placement& placement = state.placements[scene_.slot(object)];
+  if (!placement.present) {
+    throw std::invalid_argument("object '" + scene_.name(object) + "' is not placed in the state");
+  }
+  const Attachment attachment{scene_.sharedBody(object), link, objectInLink};
+  robots_.at(robot).collision.checkHeld(std::span(&attachment, 1));
+  placement.present = false;
+  state.robots[robot].held.push_back(attachment);
+  state.robots[robot].heldObjects.push_back(object);
+}
+
+void World::checkState(const GeometricState& state) const {
+  if (state.robots.size() != robots_.size()) {
+    throw std::invalid_argument("state of " + std::to_string(state.robots.size()) +
+                                " robots for a world of " + std::to_string(robots_.size()));
+  }
+  for (std::size_t r = 0; r < robots_.size(); ++r) {
+    const RobotState& robot = state.robots[r];
+    if (robot.configuration.size() !=
+            static_cast<std::size_t>(robots_[r].collision.model().dof()) ||
+        robot.held.size() != robot.heldObjects.size()) {
+      throw std::invalid_argument("state of robot '" + robots_[r].name + "' has the wrong size");
+    }
+  }
+}
+
+std::optional<Collision> World::firstCollision(const GeometricState& state,
+                                               QueryScratch& scratch) const {
+  checkState(state);
+  const auto partyOf = [&](std::size_t robot, std::size_t part) {
+    const std::size_t links = robots_[robot].collision.partCount();
+    return part < links ? Party{Party::Kind::Robot, robot}
+                        : Party{Party::Kind::Object, state.robots[robot].heldObjects[part - links]};
+  };
+  for (std::size_t r = 0; r < robots_.size(); ++r) {
+    robots_[r].collision.model().linkPoses(state.robots[r].configuration, scratch.linkPoses[r]);
+  }
+  for (std::size_t r = 0; r < robots_.size(); ++r) {
+    const RobotCollisionModel& robot = robots_[r].collision;
+    const std::span<const Attachment> held = state.robots[r].held;
+    const std::span<const Pose> poses = scratch.linkPoses[r];
+    if (robot.selfCollides(poses, held, 0.0)) {
+      return Collision{{Party::Kind::Robot, r}, {Party::Kind::Robot, r}};
+    }
+    for (std::size_t i = 0; i < robot.partCount(held); ++i) {
+      if (const auto hit = scene_.firstCollision(state.placements, *robot.part(i, held).body,
+                                                 robot.partPose(i, poses, held), 0.0)) {
+        return Collision{partyOf(r, i), {Party::Kind::Object, *hit}};
+      }
+    }
+  }
+  for (std::size_t a = 0; a < robots_.size(); ++a) {
+    const RobotCollisionModel& robotA = robots_[a].collision;
+    const std::span<const Attachment> heldA = state.robots[a].held;
+    for (std::size_t b = a + 1; b < robots_.size(); ++b) {
+      const RobotCollisionModel& robotB = robots_[b].collision;
+      const std::span<const Attachment> heldB = state.robots[b].held;
+      for (std::size_t i = 0; i < robotA.partCount(heldA); ++i) {
+        const Pose poseA = robotA.partPose(i, scratch.linkPoses[a], heldA);
+        for (std::size_t j = 0; j < robotB.partCount(heldB); ++j) {
+          if (bodiesCollide(*robotA.part(i, heldA).body, poseA, *robotB.part(j, heldB).body,
+                            robotB.partPose(j, scratch.linkPoses[b], heldB), 0.0)) {
+            return Collision{partyOf(a, i), partyOf(b, j)};
+          }
+        }
+      }
+    }
+  }
+  for (std::size_t object = 0; object < scene_.size(); ++object) {
+    if (!scene_.movable(object) || !scene_.present(object, state.placements)) continue;
+    if (const auto hit =
+            scene_.firstCollision(state.placements, scene_.body(object),
+                                  scene_.pose(object, state.placements), 0.0, object)) {
+      return Collision{{Party::Kind::Object, object}, {Party::Kind::Object, *hit}};
+    }
+  }
+  return std::nullopt;
+}
+
+std::optional<Collision> World::firstCollision(const GeometricState& state) const {
+  QueryScratch buffers = scratch();
+  return firstCollision(state, buffers);
+}
+
+std::string World::describe(const Party& party) const {
+  return party.kind == Party::Kind::Robot ? "robot '" + robots_[party.index].name + "'"
+                                          : "object '" + scene_.name(party.index) + "'";
+}
+
+std::string World::describe(const Collision& collision) const {
+  if (collision.first == collision.second)
+    return describe(collision.first) + " collides with itself";
+  return describe(collision.first) + " collides with " + describe(collision.second);
+}
+
+}  // namespace kaboum::world

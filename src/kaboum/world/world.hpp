@@ -1,0 +1,137 @@
+// The world the integrated planner queries (thesis §6.1.1 pre-processing, §6.1.2 robotics
+// components at planning time): a scene file turned once into collision geometry (robots with
+// their hands, objects, locations), then shared const; every query takes a GeometricState.
+// Format of the scene file: docs/scene-format.md; reference: docs/world.md.
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "kaboum/collision/robot_collision.hpp"
+#include "kaboum/collision/scene.hpp"
+#include "kaboum/io/scene_file.hpp"
+#include "kaboum/world/geometric_state.hpp"
+
+namespace kaboum::world {
+
+using namespace kaboum::geometry;
+using namespace kaboum::kinematics;
+using namespace kaboum::io;
+using namespace kaboum::collision;
+
+// How mesh geometry (URDF link meshes, hand and object meshes) becomes convex pieces: one convex
+// hull each, or the bounding convex decomposition of §4.4 at the scene's ε. Primitives are one
+// bounding polytope either way.
+enum class MeshPieces { Hulls, Decomposition };
+
+struct WorldOptions {
+  MeshPieces pieces = MeshPieces::Decomposition;
+};
+
+struct WorldRobot {
+  std::string name;
+  // Link parts from the URDF; a tool's hand shapes are further collision geometry of its tool
+  // link. Pairs overlapping at home are allowed (allowPairsCollidingAt).
+  RobotCollisionModel collision;
+  std::vector<double> home;
+  double preprocessingSeconds = 0;
+};
+
+// A name of the scene (compared without case, as the scene file does) and what it names: a robot
+// (index into World::robots()), an object (its CollisionScene id, equal to its index in the scene
+// file) or a location (index into the description's locations).
+struct NamedEntity {
+  enum class Kind { Robot, Object, Location };
+  Kind kind = Kind::Object;
+  std::size_t index = 0;
+};
+
+// One party of a collision: a robot's links (its own parts), or an object — a scene object, or
+// one a robot holds.
+struct Party {
+  enum class Kind { Robot, Object };
+  Kind kind = Kind::Object;
+  std::size_t index = 0;  // robot index or object id
+  bool operator==(const Party&) const = default;
+};
+
+// Two parties within distance 0 of each other (first == second: a robot's self-collision).
+struct Collision {
+  Party first;
+  Party second;
+};
+
+// Per-caller buffers of the queries (link poses of every robot), reused across states so that
+// queries allocate nothing; one per thread.
+struct QueryScratch {
+  std::vector<std::vector<Pose>> linkPoses;
+};
+
+class World {
+ public:
+  // Builds the geometry of `scene`. Movable objects resting on another object (touching it, free
+  // once raised by at most the two bodies' bounding error) are raised until free, so that the
+  // initial state is collision-free as placements are (isOnSupportSurface). Throws InputError with
+  // one line naming the entry (SourceLocation::message) when two objects start in collision or a
+  // robot at home collides with an object or another robot.
+  explicit World(SceneDescription scene, const WorldOptions& options = {});
+
+  [[nodiscard]] const SceneDescription& description() const { return description_; }
+  [[nodiscard]] const std::vector<WorldRobot>& robots() const { return robots_; }
+  // Object ids are the indices of the scene file's objects.
+  [[nodiscard]] const CollisionScene& scene() const { return scene_; }
+  [[nodiscard]] std::optional<NamedEntity> find(const std::string& name) const;
+  // Absolute ε of a body whose bounding-box diagonal is `diagonal` (the scene's ε in metres, or
+  // its fraction of the diagonal).
+  [[nodiscard]] double epsilonFor(double diagonal) const;
+
+  // Seconds spent building each object's body (by object id), and the whole World.
+  [[nodiscard]] const std::vector<double>& objectSeconds() const { return objectSeconds_; }
+  [[nodiscard]] double preprocessingSeconds() const { return preprocessingSeconds_; }
+  // How far a resting object was raised off its support at load time (by object id; 0 if not).
+  [[nodiscard]] const std::vector<double>& restingLift() const { return restingLift_; }
+
+  // Every robot at home holding nothing, every movable object at its (raised) initial pose.
+  [[nodiscard]] GeometricState initialState() const;
+  [[nodiscard]] QueryScratch scratch() const;
+
+  // Makes `robot` hold movable object `object` on `link` with the object frame at `objectInLink`:
+  // the object's placement becomes absent and it moves with the link. Throws std::invalid_argument
+  // for a fixed object or one not placed in `state`.
+  void hold(GeometricState& state, std::size_t robot, int link, std::size_t object,
+            const Pose& objectInLink) const;
+
+  // The first collision in `state`, checked through the bounded predicates at distance 0 (never
+  // missed; may be reported up to the bodies' bounding error apart): each robot's self-collision,
+  // robot (with what it holds) against the scene, robot against robot, then each present movable
+  // object against every other object. A held object is not checked against the link holding it.
+  // Throws std::invalid_argument for a state of the wrong shape. Allocates nothing.
+  [[nodiscard]] std::optional<Collision> firstCollision(const GeometricState& state,
+                                                        QueryScratch& scratch) const;
+  // The same with buffers of its own (allocates them).
+  [[nodiscard]] std::optional<Collision> firstCollision(const GeometricState& state) const;
+
+  // "robot 'twin'", "object 'bottle'": a party's name for messages.
+  [[nodiscard]] std::string describe(const Party& party) const;
+  // "robot 'twin' collides with object 'table'"; "robot 'twin' collides with itself".
+  [[nodiscard]] std::string describe(const Collision& collision) const;
+
+ private:
+  void checkState(const GeometricState& state) const;
+  void validateInitialState();
+
+  SceneDescription description_;
+  std::vector<WorldRobot> robots_;
+  CollisionScene scene_;
+  std::map<std::string, NamedEntity> names_;  // lower-case name
+  std::vector<double> objectSeconds_;
+  std::vector<double> restingLift_;
+  SceneState initialPlacements_;  // the scene's initial placements, resting objects raised
+  double preprocessingSeconds_ = 0;
+};
+
+}  // namespace kaboum::world
