@@ -36,8 +36,6 @@ using namespace kaboum::testing;
 
 namespace {
 
-using collision::CollisionScene;
-using collision::RobotCollisionModel;
 using Clock = std::chrono::steady_clock;
 
 nlohmann::json stats(std::vector<double> ns) {

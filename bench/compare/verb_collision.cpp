@@ -38,8 +38,6 @@ using namespace kaboum::testing;
 
 namespace {
 
-using testing::PolytopePair;
-
 struct CollisionBenchOptions {
   std::size_t pairs = 2000;
   std::vector<int> vertexCounts = {8, 16, 32, 64};

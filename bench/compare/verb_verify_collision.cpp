@@ -36,8 +36,6 @@ using namespace kaboum::testing;
 
 namespace {
 
-using collision::CollisionBody;
-
 struct VerifyOptions {
   std::vector<std::string> meshes;
   long samples = 100000;

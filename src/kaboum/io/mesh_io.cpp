@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "kaboum/core/error.hpp"
+#include "kaboum/core/text.hpp"
 #include "kaboum/geometry/mesh_analysis.hpp"
 #include "kaboum/geometry/mesh_cleanup.hpp"
 #include "kaboum/io/mesh_formats.hpp"
@@ -23,10 +24,7 @@ namespace {
 using FileHandle = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
 
 std::string lowerExtension(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension;
+  return lowerCase(std::filesystem::path(path).extension().string());
 }
 
 std::string unknownFormat(const std::string& extension, const char* expected) {

@@ -14,6 +14,7 @@
 #include <string_view>
 
 #include "kaboum/core/error.hpp"
+#include "kaboum/core/text.hpp"
 #include "kaboum/io/mesh_io.hpp"
 #include "kaboum/io/urdf_loader.hpp"
 #include "kaboum/kinematics/arm_ik.hpp"
@@ -80,12 +81,6 @@ std::string suggestion(std::string_view word, const Names& candidates) {
   return " (expected one of: " + list + ")";
 }
 
-std::string lowercase(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
-}
-
 std::string describe(const YAML::Node& node) {
   switch (node.Type()) {
     case YAML::NodeType::Scalar:
@@ -103,7 +98,7 @@ std::string describe(const YAML::Node& node) {
 std::optional<double> parseNumber(std::string_view text) {
   if (!text.empty() && text.front() == '+') text.remove_prefix(1);
   const bool negative = !text.empty() && text.front() == '-';
-  const std::string special = lowercase(std::string(text.substr(negative ? 1 : 0)));
+  const std::string special = lowerCase(std::string(text.substr(negative ? 1 : 0)));
   if (special == ".inf") return negative ? -HUGE_VAL : HUGE_VAL;
   if (special == ".nan") return std::nan("");
   double value = 0;
@@ -385,7 +380,7 @@ class SceneReader {
   }
 
   [[nodiscard]] bool boolean(const Entry& entry) const {
-    const std::string text = lowercase(scalar(entry, "true or false"));
+    const std::string text = lowerCase(scalar(entry, "true or false"));
     if (text != "true" && text != "false") {
       fail(entry, "expected true or false, got " + describe(entry.node));
     }
@@ -438,7 +433,7 @@ class SceneReader {
   // case as PDDL does.
   std::string claimName(const Entry& entry) {
     const std::string name = symbol(entry);
-    const auto [previous, added] = names_.emplace(lowercase(name), where(entry));
+    const auto [previous, added] = names_.emplace(lowerCase(name), where(entry));
     if (!added) {
       fail(entry, fmt::format("duplicate name '{}' (also {} at line {})", name,
                               previous->second.key, previous->second.line));
@@ -814,7 +809,7 @@ class SceneReader {
       std::set<std::string> names;
       for (const Entry& grasp : sequence(*grasps)) {
         object.grasps.push_back(readGrasp(grasp));
-        if (!names.insert(lowercase(object.grasps.back().name)).second) {
+        if (!names.insert(lowerCase(object.grasps.back().name)).second) {
           fail(grasp, "duplicate grasp name " + inQuotes(object.grasps.back().name));
         }
       }

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "kaboum/core/error.hpp"
+#include "kaboum/core/text.hpp"
 #include "kaboum/io/mesh_io.hpp"
 #include "kaboum/io/urdf_loader.hpp"
 
@@ -17,12 +18,6 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-std::string lowerCase(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
 }
 
 LinkPieceOptions pieceOptions(const SceneSettings& settings, const WorldOptions& options) {
