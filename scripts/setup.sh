@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build ccache pkg-config clang-format jq
   libeigen3-dev libassimp-dev libcli11-dev nlohmann-json3-dev libfmt-dev liburdfdom-dev
-  libqhull-dev libfcl-dev libccd-dev libbullet-dev libbullet-extras-dev libyaml-cpp-dev
+  libqhull-dev libfcl-dev libccd-dev libbullet-dev libbullet-extras-dev libyaml-cpp-dev libompl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   dart-doc
 )
