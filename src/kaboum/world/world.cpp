@@ -167,6 +167,7 @@ QueryScratch World::scratch() const {
   for (const WorldRobot& robot : robots_) {
     scratch.linkPoses.emplace_back(robot.collision.model().links().size());
   }
+  scratch.againstRobots.resize(robots_.size());
   return scratch;
 }
 
@@ -199,46 +200,60 @@ void World::checkState(const GeometricState& state) const {
   }
 }
 
-std::optional<Collision> World::firstCollision(const GeometricState& state,
-                                               QueryScratch& scratch) const {
-  checkState(state);
-  const auto partyOf = [&](std::size_t robot, std::size_t part) {
-    const std::size_t links = robots_[robot].collision.partCount();
-    return part < links ? Party{Party::Kind::Robot, robot}
-                        : Party{Party::Kind::Object, state.robots[robot].heldObjects[part - links]};
-  };
+void World::computeLinkPoses(const GeometricState& state, QueryScratch& scratch) const {
   for (std::size_t r = 0; r < robots_.size(); ++r) {
     robots_[r].collision.model().linkPoses(state.robots[r].configuration, scratch.linkPoses[r]);
   }
-  for (std::size_t r = 0; r < robots_.size(); ++r) {
-    const RobotCollisionModel& robot = robots_[r].collision;
-    const std::span<const Attachment> held = state.robots[r].held;
-    const std::span<const Pose> poses = scratch.linkPoses[r];
-    if (robot.selfCollides(poses, held, 0.0)) {
-      return Collision{{Party::Kind::Robot, r}, {Party::Kind::Robot, r}};
+}
+
+std::optional<Collision> World::firstCollisionOfRobot(const GeometricState& state,
+                                                      const QueryScratch& scratch,
+                                                      std::size_t robot,
+                                                      std::span<const std::uint8_t> against) const {
+  const auto partyOf = [&](std::size_t r, std::size_t part) {
+    const std::size_t links = robots_[r].collision.partCount();
+    return part < links ? Party{Party::Kind::Robot, r}
+                        : Party{Party::Kind::Object, state.robots[r].heldObjects[part - links]};
+  };
+  const RobotCollisionModel& model = robots_[robot].collision;
+  const std::span<const Attachment> held = state.robots[robot].held;
+  const std::span<const Pose> poses = scratch.linkPoses[robot];
+  if (model.selfCollides(poses, held, 0.0)) {
+    return Collision{{Party::Kind::Robot, robot}, {Party::Kind::Robot, robot}};
+  }
+  for (std::size_t i = 0; i < model.partCount(held); ++i) {
+    if (const auto hit = scene_.firstCollision(state.placements, *model.part(i, held).body,
+                                               model.partPose(i, poses, held), 0.0)) {
+      return Collision{partyOf(robot, i), {Party::Kind::Object, *hit}};
     }
-    for (std::size_t i = 0; i < robot.partCount(held); ++i) {
-      if (const auto hit = scene_.firstCollision(state.placements, *robot.part(i, held).body,
-                                                 robot.partPose(i, poses, held), 0.0)) {
-        return Collision{partyOf(r, i), {Party::Kind::Object, *hit}};
+  }
+  for (std::size_t other = 0; other < robots_.size(); ++other) {
+    if (other == robot || against[other] == 0) continue;
+    const RobotCollisionModel& otherModel = robots_[other].collision;
+    const std::span<const Attachment> otherHeld = state.robots[other].held;
+    for (std::size_t i = 0; i < model.partCount(held); ++i) {
+      const Pose pose = model.partPose(i, poses, held);
+      for (std::size_t j = 0; j < otherModel.partCount(otherHeld); ++j) {
+        if (bodiesCollide(*model.part(i, held).body, pose, *otherModel.part(j, otherHeld).body,
+                          otherModel.partPose(j, scratch.linkPoses[other], otherHeld), 0.0)) {
+          return Collision{partyOf(robot, i), partyOf(other, j)};
+        }
       }
     }
   }
-  for (std::size_t a = 0; a < robots_.size(); ++a) {
-    const RobotCollisionModel& robotA = robots_[a].collision;
-    const std::span<const Attachment> heldA = state.robots[a].held;
-    for (std::size_t b = a + 1; b < robots_.size(); ++b) {
-      const RobotCollisionModel& robotB = robots_[b].collision;
-      const std::span<const Attachment> heldB = state.robots[b].held;
-      for (std::size_t i = 0; i < robotA.partCount(heldA); ++i) {
-        const Pose poseA = robotA.partPose(i, scratch.linkPoses[a], heldA);
-        for (std::size_t j = 0; j < robotB.partCount(heldB); ++j) {
-          if (bodiesCollide(*robotA.part(i, heldA).body, poseA, *robotB.part(j, heldB).body,
-                            robotB.partPose(j, scratch.linkPoses[b], heldB), 0.0)) {
-            return Collision{partyOf(a, i), partyOf(b, j)};
-          }
-        }
-      }
+  return std::nullopt;
+}
+
+std::optional<Collision> World::firstCollision(const GeometricState& state,
+                                               QueryScratch& scratch) const {
+  checkState(state);
+  computeLinkPoses(state, scratch);
+  // Each robot against itself, the scene and the robots after it.
+  std::fill(scratch.againstRobots.begin(), scratch.againstRobots.end(), std::uint8_t{1});
+  for (std::size_t r = 0; r < robots_.size(); ++r) {
+    scratch.againstRobots[r] = 0;
+    if (auto collision = firstCollisionOfRobot(state, scratch, r, scratch.againstRobots)) {
+      return collision;
     }
   }
   for (std::size_t object = 0; object < scene_.size(); ++object) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <span>
@@ -69,6 +70,7 @@ struct Collision {
 // queries allocate nothing; one per thread.
 struct QueryScratch {
   std::vector<std::vector<Pose>> linkPoses;
+  std::vector<std::uint8_t> againstRobots;  // one flag per robot
 };
 
 class World {
@@ -106,12 +108,21 @@ class World {
             const Pose& objectInLink) const;
 
   // The first collision in `state`, checked through the bounded predicates at distance 0 (never
-  // missed; may be reported up to the bodies' bounding error apart): each robot's self-collision,
-  // robot (with what it holds) against the scene, robot against robot, then each present movable
-  // object against every other object. A held object is not checked against the link holding it.
+  // missed; may be reported up to the bodies' bounding error apart): each robot in turn (with what
+  // it holds) against itself, the scene and the robots after it, then each present movable object
+  // against every other object. A held object is not checked against the link holding it.
   // Throws std::invalid_argument for a state of the wrong shape. Allocates nothing.
   [[nodiscard]] std::optional<Collision> firstCollision(const GeometricState& state,
                                                         QueryScratch& scratch) const;
+  // Every robot's link poses in `state` into `scratch.linkPoses`. Allocates nothing.
+  void computeLinkPoses(const GeometricState& state, QueryScratch& scratch) const;
+  // The first collision of robot `robot` (with what it holds) in `state`: with itself, the
+  // scene's objects, and each other robot r with against[r] != 0 — the part of firstCollision that
+  // changes when the robot moves. `scratch.linkPoses` must hold the state's link poses
+  // (computeLinkPoses). Allocates nothing.
+  [[nodiscard]] std::optional<Collision> firstCollisionOfRobot(
+      const GeometricState& state, const QueryScratch& scratch, std::size_t robot,
+      std::span<const std::uint8_t> against) const;
   // The same with buffers of its own (allocates them).
   [[nodiscard]] std::optional<Collision> firstCollision(const GeometricState& state) const;
 
