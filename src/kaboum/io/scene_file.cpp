@@ -16,6 +16,8 @@
 #include "kaboum/core/error.hpp"
 #include "kaboum/core/text.hpp"
 #include "kaboum/io/mesh_io.hpp"
+#include "kaboum/io/message_text.hpp"
+#include "kaboum/io/moveit_scene.hpp"
 #include "kaboum/io/urdf_loader.hpp"
 #include "kaboum/kinematics/arm_ik.hpp"
 #include "kaboum/kinematics/kinematic_chain.hpp"
@@ -26,60 +28,18 @@ std::string SourceLocation::message(const std::string& what) const {
   return locate(file, key.empty() ? what : key + ": " + what, line, column);
 }
 
+void addAllowedPair(std::vector<AllowedPair>& pairs, AllowedPair pair) {
+  const bool known = std::any_of(pairs.begin(), pairs.end(), [&](const AllowedPair& other) {
+    return (other.first == pair.first && other.second == pair.second) ||
+           (other.first == pair.second && other.second == pair.first);
+  });
+  if (!known) pairs.push_back(std::move(pair));
+}
+
 namespace {
 
 namespace fs = std::filesystem;
 using Names = std::vector<std::string>;
-
-// Optimal string alignment distance: insertions, deletions, substitutions and transpositions of
-// neighbours each cost one.
-std::size_t editDistance(std::string_view a, std::string_view b) {
-  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
-  for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
-  for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t substitution = a[i - 1] == b[j - 1] ? 0 : 1;
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + substitution});
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) {
-        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-      }
-    }
-  }
-  return d[a.size()][b.size()];
-}
-
-// `text` in quotes for a one-line message: control characters as spaces, cut after 40 characters.
-std::string inQuotes(std::string_view text) {
-  constexpr std::size_t kShown = 40;
-  std::string shown(text.substr(0, kShown));
-  std::replace_if(
-      shown.begin(), shown.end(), [](unsigned char c) { return std::iscntrl(c); }, ' ');
-  return "'" + shown + (text.size() > kShown ? "...'" : "'");
-}
-
-// " (did you mean 'position'?)" when a candidate is within a few edits of `word`, else the list
-// of candidates.
-std::string suggestion(std::string_view word, const Names& candidates) {
-  const std::string* nearest = nullptr;
-  std::size_t nearestDistance = 0;
-  for (const std::string& candidate : candidates) {
-    const std::size_t allowed = std::max<std::size_t>(2, candidate.size() / 3);
-    const std::size_t lengthDifference = word.size() > candidate.size()
-                                             ? word.size() - candidate.size()
-                                             : candidate.size() - word.size();
-    if (lengthDifference > allowed) continue;  // the distance is at least this
-    const std::size_t distance = editDistance(word, candidate);
-    if (distance <= allowed && (!nearest || distance < nearestDistance)) {
-      nearest = &candidate;
-      nearestDistance = distance;
-    }
-  }
-  if (nearest) return " (did you mean '" + *nearest + "'?)";
-  std::string list;
-  for (const std::string& candidate : candidates) list += (list.empty() ? "" : ", ") + candidate;
-  return " (expected one of: " + list + ")";
-}
 
 std::string describe(const YAML::Node& node) {
   switch (node.Type()) {
@@ -196,7 +156,8 @@ struct Fields {
 
 const Names kSceneKeys{"version", "settings", "robots", "objects", "locations"};
 const Names kSettingsKeys{"epsilon", "joint_step", "tool_step", "seed"};
-const Names kRobotKeys{"name", "urdf", "base_pose", "home", "joint_limits", "tools"};
+const Names kRobotKeys{"name",         "urdf",  "base_pose",          "home",
+                       "joint_limits", "tools", "allowed_collisions", "srdf"};
 const Names kJointLimitKeys{"velocity", "acceleration"};
 const Names kToolKeys{"name", "link", "base_link", "tcp", "ik", "hand"};
 const Names kIkMethods{"auto", "closed-form", "numeric"};
@@ -585,6 +546,28 @@ class SceneReader {
     if (const auto limits = f.find("joint_limits")) readJointLimits(*limits, model, robot.joints);
     if (const auto tools = f.find("tools")) {
       for (const Entry& tool : sequence(*tools)) robot.tools.push_back(readTool(tool, model));
+    }
+    if (const auto pairs = f.find("allowed_collisions")) {
+      for (const Entry& pair : sequence(*pairs)) {
+        const std::vector<Entry> links = sequence(pair);
+        if (links.size() != 2) {
+          fail(pair, fmt::format("expected two links [a, b], got {}", links.size()));
+        }
+        const auto nameOf = [&](const Entry& link) {
+          return model.links()[static_cast<std::size_t>(linkNamed(link, model))].name;
+        };
+        addAllowedPair(robot.allowedCollisions, {nameOf(links[0]), nameOf(links[1])});
+      }
+    }
+    if (const auto srdf = f.find("srdf")) {
+      const std::string path = filePath(*srdf);
+      std::vector<AllowedPair> pairs;
+      try {
+        pairs = readSrdfAllowedPairs(path, model);
+      } catch (const InputError& e) {
+        fail(*srdf, e.what());
+      }
+      for (AllowedPair& pair : pairs) addAllowedPair(robot.allowedCollisions, std::move(pair));
     }
     return robot;
   }

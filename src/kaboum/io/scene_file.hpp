@@ -77,12 +77,24 @@ struct JointSpec {
   std::optional<double> maxAcceleration;  // the joint's entry, the `default` entry's
 };
 
+// Two links of a robot whose parts are never checked against each other for self-collision
+// (MoveIt's allowed collision pairs: an SRDF's <disable_collisions>, a planning scene's
+// allowed_collision_matrix), by URDF link name.
+struct AllowedPair {
+  std::string first;
+  std::string second;
+};
+
+// Appends `pair` to `pairs` unless it is there already, in either order.
+void addAllowedPair(std::vector<AllowedPair>& pairs, AllowedPair pair);
+
 struct RobotSpec {
   std::string name;
   std::string urdf;              // resolved against the scene file's folder
   Pose base = Pose::Identity();  // the URDF root in the world
   std::vector<JointSpec> joints;
   std::vector<ToolSpec> tools;
+  std::vector<AllowedPair> allowedCollisions;  // each unordered pair once, in file order
   SourceLocation source;
   SourceLocation homeSource;  // the `home` entry, or the robot's when it has none
 };

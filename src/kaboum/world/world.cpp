@@ -45,12 +45,37 @@ RobotModel robotWithHands(const RobotSpec& spec) {
   return {urdf.name(), std::move(links), urdf.joints()};
 }
 
+// Exempts the spec's allowed link pairs from self-collision checks (a link without collision
+// geometry has no part to exempt). Throws InputError for a link the robot does not have.
+void allowLinkPairs(const RobotSpec& spec, RobotCollisionModel& collision) {
+  std::map<int, std::size_t> partOfLink;
+  for (std::size_t part = 0; part < collision.partCount(); ++part) {
+    partOfLink.emplace(collision.part(part).link, part);
+  }
+  const auto partOf = [&](const std::string& name) {
+    const std::optional<int> link = collision.model().findLink(name);
+    if (!link) {
+      throw InputError(
+          spec.source.message("allowed collision pair names unknown link '" + name + "'"));
+    }
+    return partOfLink.find(*link);
+  };
+  for (const AllowedPair& pair : spec.allowedCollisions) {
+    const auto first = partOf(pair.first);
+    const auto second = partOf(pair.second);
+    if (first != partOfLink.end() && second != partOfLink.end()) {
+      collision.filter().allow(first->second, second->second);
+    }
+  }
+}
+
 WorldRobot buildRobot(const RobotSpec& spec, const LinkPieceOptions& pieces) {
   const Clock::time_point start = Clock::now();
   RobotModel model = robotWithHands(spec);
   const LinkMeshes meshes = readCollisionMeshes(model);
   WorldRobot robot{spec.name, RobotCollisionModel(std::move(model), meshes, pieces), {}, 0};
   robot.collision.setBasePose(spec.base);
+  allowLinkPairs(spec, robot.collision);
   for (const JointSpec& joint : spec.joints) robot.home.push_back(joint.home);
   std::vector<Pose> poses(robot.collision.model().links().size());
   robot.collision.model().linkPoses(robot.home, poses);
