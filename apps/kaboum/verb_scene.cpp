@@ -1,6 +1,7 @@
-// `kaboum scene FILE [--json] [--quiet]`: reads a scene file, builds its World (collision geometry
-// of robots, hands and objects, thesis §6.1.1) and reports what was built and whether the initial
-// state is collision-free (exit code 2 with the error line when it is not).
+// `kaboum scene FILE [--json] [--quiet] [--no-cache | --cache-dir DIR]`: reads a scene file, builds
+// its World (collision geometry of robots, hands and objects, thesis §6.1.1) and reports what was
+// built, the ε each body reaches, what the decomposition cache did, and whether the initial state
+// is collision-free (exit code 2 with the error line when it is not).
 #include <fmt/format.h>
 
 #include <iostream>
@@ -8,6 +9,7 @@
 #include "kaboum/io/json_kinematics.hpp"
 #include "kaboum/io/scene_file.hpp"
 #include "kaboum/world/world.hpp"
+#include "scene_cli.hpp"
 #include "verb.hpp"
 
 namespace kaboum::cli {
@@ -45,11 +47,43 @@ std::string epsilonText(const SceneSettings& settings) {
              : fmt::format("{:g} m", settings.epsilon);
 }
 
+std::string millimetres(double metres) {
+  return fmt::format("{:.3g} mm", 1000 * metres);
+}
+
+// "ε 4.27 mm", or "ε 6.1 mm (asked 5 mm: not reached)".
+std::string epsilonReached(const BodyEpsilon& epsilon) {
+  const std::string reached = "ε " + millimetres(epsilon.reached);
+  return epsilon.met() ? reached
+                       : reached + " (asked " + millimetres(epsilon.asked) + ": not reached)";
+}
+
+nlohmann::json epsilonJson(const BodyEpsilon& epsilon) {
+  return {{"asked", epsilon.asked}, {"reached", epsilon.reached}, {"met", epsilon.met()}};
+}
+
+std::string cacheText(const std::optional<std::filesystem::path>& directory,
+                      const DecompositionCacheReport& report) {
+  if (!directory) return "off";
+  return fmt::format("{} hit(s), {} miss(es), {} rebuilt ({})", report.hits, report.misses,
+                     report.rebuilt, directory->string());
+}
+
+nlohmann::json cacheJson(const std::optional<std::filesystem::path>& directory,
+                         const DecompositionCacheReport& report) {
+  return {{"directory", directory ? nlohmann::json(directory->string()) : nlohmann::json()},
+          {"hits", report.hits},
+          {"misses", report.misses},
+          {"rebuilt", report.rebuilt},
+          {"warnings", report.warnings}};
+}
+
 const char* regionKind(const LocationSpec& location) {
   return std::holds_alternative<BoxRegion>(location.region) ? "box" : "hull";
 }
 
-void printReport(const std::string& file, const World& world) {
+void printReport(const std::string& file, const World& world,
+                 const std::optional<std::filesystem::path>& cacheDirectory) {
   const SceneDescription& scene = world.description();
   fmt::print("scene:         {}\n", file);
   fmt::print("epsilon:       {}\n", epsilonText(scene.settings));
@@ -59,13 +93,25 @@ void printReport(const std::string& file, const World& world) {
     fmt::print("  {}: {} DOF, {} links with geometry, {} piece(s), {} vertices, {:.3f} s\n",
                robot.name, robot.collision.model().dof(), robot.collision.partCount(),
                counts.pieces, counts.vertices, robot.preprocessingSeconds);
+    for (std::size_t i = 0; i < robot.collision.partCount(); ++i) {
+      const Attachment& part = robot.collision.part(i);
+      fmt::print("    link {}: {} piece(s), {}\n",
+                 robot.collision.model().links()[static_cast<std::size_t>(part.link)].name,
+                 part.body->pieceCount(), epsilonReached(robot.partEpsilon[i]));
+    }
+    const std::vector<ToolSpec>& tools = scene.robots[&robot - world.robots().data()].tools;
+    for (std::size_t t = 0; t < tools.size(); ++t) {
+      for (const double reached : robot.handShapeEpsilon[t]) {
+        fmt::print("    hand shape of {}: ε {}\n", tools[t].name, millimetres(reached));
+      }
+    }
   }
   fmt::print("objects:       {}\n", scene.objects.size());
   for (std::size_t o = 0; o < scene.objects.size(); ++o) {
     const BodyCounts counts = countsOf(world.scene().body(o));
-    fmt::print("  {}: {}, {} piece(s), {} vertices, {:.3f} s", scene.objects[o].name,
+    fmt::print("  {}: {}, {} piece(s), {} vertices, {}, {:.3f} s", scene.objects[o].name,
                scene.objects[o].movable ? "movable" : "static", counts.pieces, counts.vertices,
-               world.objectSeconds()[o]);
+               epsilonReached(world.objectEpsilon()[o]), world.objectSeconds()[o]);
     if (world.restingLift()[o] > 0) {
       fmt::print(", raised {:g} mm off its support", 1000 * world.restingLift()[o]);
     }
@@ -76,20 +122,37 @@ void printReport(const std::string& file, const World& world) {
     fmt::print("  {}: {}{}\n", location.name, regionKind(location),
                location.supportSurface ? ", support surface" : "");
   }
+  fmt::print("cache:         {}\n", cacheText(cacheDirectory, world.cacheReport()));
   fmt::print("preprocessing: {:.3f} s\n", world.preprocessingSeconds());
 }
 
-nlohmann::json reportJson(const std::string& file, const World& world, bool collisionFree) {
+nlohmann::json reportJson(const std::string& file, const World& world, bool collisionFree,
+                          const std::optional<std::filesystem::path>& cacheDirectory) {
   const SceneDescription& scene = world.description();
   nlohmann::json robots = nlohmann::json::array();
   for (const WorldRobot& robot : world.robots()) {
     const BodyCounts counts = countsOf(robot.collision);
+    nlohmann::json parts = nlohmann::json::array();
+    for (std::size_t i = 0; i < robot.collision.partCount(); ++i) {
+      const Attachment& part = robot.collision.part(i);
+      parts.push_back(
+          {{"link", robot.collision.model().links()[static_cast<std::size_t>(part.link)].name},
+           {"pieces", part.body->pieceCount()},
+           {"epsilon", epsilonJson(robot.partEpsilon[i])}});
+    }
+    const std::vector<ToolSpec>& tools = scene.robots[&robot - world.robots().data()].tools;
+    nlohmann::json hands = nlohmann::json::array();
+    for (std::size_t t = 0; t < tools.size(); ++t) {
+      hands.push_back({{"tool", tools[t].name}, {"shapes_epsilon", robot.handShapeEpsilon[t]}});
+    }
     robots.push_back({{"name", robot.name},
                       {"dof", robot.collision.model().dof()},
                       {"links_with_geometry", robot.collision.partCount()},
                       {"pieces", counts.pieces},
                       {"vertices", counts.vertices},
                       {"base", toJson(robot.collision.basePose())},
+                      {"parts", parts},
+                      {"hands", hands},
                       {"seconds", robot.preprocessingSeconds}});
   }
   nlohmann::json objects = nlohmann::json::array();
@@ -100,6 +163,7 @@ nlohmann::json reportJson(const std::string& file, const World& world, bool coll
                        {"movable", scene.objects[o].movable},
                        {"pieces", counts.pieces},
                        {"vertices", counts.vertices},
+                       {"epsilon", epsilonJson(world.objectEpsilon()[o])},
                        {"pose", toJson(world.scene().pose(o, initial.placements))},
                        {"resting_lift", world.restingLift()[o]},
                        {"seconds", world.objectSeconds()[o]}});
@@ -116,6 +180,7 @@ nlohmann::json reportJson(const std::string& file, const World& world, bool coll
           {"robots", robots},
           {"objects", objects},
           {"locations", locations},
+          {"cache", cacheJson(cacheDirectory, world.cacheReport())},
           {"preprocessing_seconds", world.preprocessingSeconds()},
           {"initial_state_collision_free", collisionFree}};
 }
@@ -125,18 +190,27 @@ VerbRunner setupScene(CLI::App& command) {
     std::string file;
     bool json = false;
     bool quiet = false;
+    SceneLoadOptions load;
   };
   auto options = std::make_shared<Options>();
   command.add_option("FILE", options->file, "Scene file (YAML, docs/scene-format.md)")->required();
   command.add_flag("--json", options->json, "Print one JSON object instead of lines");
-  command.add_flag("-q,--quiet", options->quiet, "Print only the initial state's verdict");
+  command.add_flag("-q,--quiet", options->quiet,
+                   "Print only the initial state's verdict (and no cache warnings)");
+  addSceneLoadOptions(command, options->load);
   return [options] {
-    const World world(readSceneFile(options->file));
+    const World world = loadWorld(options->file, options->load);
+    const std::optional<std::filesystem::path> cache = cacheDirectory(options->load);
+    if (!options->quiet) {
+      for (const std::string& warning : world.cacheReport().warnings) {
+        std::cerr << "kaboum: warning: " << warning << '\n';
+      }
+    }
     const std::optional<Collision> collision = world.firstCollision(world.initialState());
     if (options->json) {
-      std::cout << reportJson(options->file, world, !collision).dump() << '\n';
+      std::cout << reportJson(options->file, world, !collision, cache).dump() << '\n';
     } else {
-      if (!options->quiet) printReport(options->file, world);
+      if (!options->quiet) printReport(options->file, world, cache);
       if (!collision) fmt::print("initial state: collision-free\n");
     }
     if (collision) {

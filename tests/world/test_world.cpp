@@ -53,7 +53,7 @@ SceneDescription twoArmsWith(const std::string& objects) {
 
 std::string loadError(const SceneDescription& scene) {
   try {
-    const World world(scene, {MeshPieces::Hulls});
+    const World world(scene, {MeshPieces::Hulls, std::nullopt});
   } catch (const InputError& error) {
     return error.what();
   }
@@ -229,20 +229,22 @@ TEST(World, ARobotCollidingAtHomeIsNamed) {
 
 TEST(SceneCli, PrintsTheWorldOfAScene) {
   const test::ScratchDir dir;
-  const test::CliResult result = test::runCli(dir, "scene '" + twoArmsTable() + "'");
+  const test::CliResult result = test::runCli(dir, "scene --no-cache '" + twoArmsTable() + "'");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   for (const char* line : {"twin: 12 DOF", "table: static, 1 piece(s), 8 vertices",
                            "bottle: movable", "shelf: box, support surface",
                            "epsilon:       1% of each body", "initial state: collision-free"}) {
     EXPECT_NE(result.out.find(line), std::string::npos) << line << "\n" << result.out;
   }
-  const test::CliResult quiet = test::runCli(dir, "scene --quiet '" + twoArmsTable() + "'");
+  const test::CliResult quiet =
+      test::runCli(dir, "scene --no-cache --quiet '" + twoArmsTable() + "'");
   EXPECT_EQ(quiet.out, "initial state: collision-free\n");
 }
 
 TEST(SceneCli, PrintsJson) {
   const test::ScratchDir dir;
-  const test::CliResult result = test::runCli(dir, "scene --json '" + twoArmsTable() + "'");
+  const test::CliResult result =
+      test::runCli(dir, "scene --no-cache --json '" + twoArmsTable() + "'");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   const nlohmann::json report = nlohmann::json::parse(result.out);
   EXPECT_EQ(report["robots"][0]["name"], "twin");
@@ -256,7 +258,7 @@ TEST(SceneCli, PrintsJson) {
 
 TEST(SceneCli, BadScenesExitWithTwo) {
   const test::ScratchDir dir;
-  test::CliResult result = test::runCli(dir, "scene '" + dir.file("missing.yaml") + "'");
+  test::CliResult result = test::runCli(dir, "scene --no-cache '" + dir.file("missing.yaml") + "'");
   EXPECT_EQ(result.exitCode, 2);
   EXPECT_NE(result.err.find("missing.yaml"), std::string::npos) << result.err;
 
@@ -266,7 +268,7 @@ TEST(SceneCli, BadScenesExitWithTwo) {
   text.replace(text.find("locations:"), 0,
                "  - name: pillar\n    geometry: {box: {size: [0.1, 0.1, 2.0]}}\n\n");
   const std::string path = dir.write("colliding.yaml", text);
-  result = test::runCli(dir, "scene '" + path + "'");
+  result = test::runCli(dir, "scene --no-cache '" + path + "'");
   EXPECT_EQ(result.exitCode, 2);
   EXPECT_NE(result.err.find("robot 'twin' at home collides with object 'pillar'"),
             std::string::npos)

@@ -16,6 +16,8 @@ using namespace kaboum::kinematics;
 namespace {
 
 constexpr int kCylinderSides = 16;
+// Surface samples of a mesh's hull whose distance to the mesh is its bounding error.
+constexpr std::size_t kHullErrorSamples = 1000;
 
 // The 42 vertices of an icosahedron with every edge split at its midpoint, on the unit sphere.
 std::vector<Vec3> geodesicSphere() {
@@ -40,27 +42,63 @@ std::vector<Vec3> geodesicSphere() {
   return points;
 }
 
+// decomposeBounding (through options.decomposer), the piece limit doubled while it stops the
+// splitting with the estimated error above ε; the result with the smallest error.
+Decomposition decompositionReachingEpsilon(const TriangleMesh& mesh,
+                                           const LinkPieceOptions& options) {
+  const auto decompose = [&](const DecompositionOptions& attempt) {
+    return options.decomposer ? options.decomposer(mesh, attempt)
+                              : decomposeBounding(mesh, attempt);
+  };
+  DecompositionOptions attempt = options.decomposition;
+  Decomposition best = decompose(attempt);
+  for (std::size_t doubling = 0; doubling < options.pieceLimitDoublings; ++doubling) {
+    if (best.stats.estimatedError <= best.stats.epsilon || best.pieces.size() < attempt.maxPieces) {
+      break;
+    }
+    attempt.maxPieces *= 2;
+    Decomposition larger = decompose(attempt);
+    if (!(larger.stats.estimatedError < best.stats.estimatedError)) break;
+    best = std::move(larger);
+  }
+  return best;
+}
+
 }  // namespace
+
+BoundingPieces boundingMeshPieces(const TriangleMesh& mesh, const std::string& what,
+                                  const LinkPieceOptions& options) {
+  BoundingPieces bounding;
+  if (!options.decompose) {
+    ConvexHull hull = convexHull(mesh.vertices, what);
+    const ConvexPiece piece{std::move(hull.mesh), std::move(hull.planes)};
+    bounding.boundingError = measureDecomposition(mesh, std::span(&piece, 1), kHullErrorSamples,
+                                                  options.decomposition.seed)
+                                 .approximationToOriginal.max;
+    bounding.pieces.push_back(piece.vertices());
+    return bounding;
+  }
+  Decomposition decomposition;
+  try {
+    decomposition = decompositionReachingEpsilon(mesh, options);
+  } catch (const InputError& error) {
+    throw InputError(what + ": " + error.what());
+  }
+  for (const ConvexPiece& piece : decomposition.pieces) bounding.pieces.push_back(piece.vertices());
+  bounding.boundingError = decomposition.stats.estimatedError;
+  return bounding;
+}
 
 std::vector<std::vector<Vec3>> boundingConvexPieces(const TriangleMesh& mesh,
                                                     const std::string& what,
                                                     const LinkPieceOptions& options) {
-  if (!options.decompose) return {convexHull(mesh.vertices, what).mesh.vertices};
-  std::vector<std::vector<Vec3>> pieces;
-  try {
-    for (const ConvexPiece& piece : decomposeBounding(mesh, options.decomposition).pieces) {
-      pieces.push_back(piece.vertices());
-    }
-  } catch (const InputError& error) {
-    throw InputError(what + ": " + error.what());
-  }
-  return pieces;
+  return boundingMeshPieces(mesh, what, options).pieces;
 }
 
-std::vector<std::vector<Vec3>> shapeConvexPieces(const CollisionShape& shape,
-                                                 const LinkMeshes& meshes,
-                                                 const LinkPieceOptions& options) {
-  std::vector<std::vector<Vec3>> pieces;
+BoundingPieces boundingShapePieces(const CollisionShape& shape, const LinkMeshes& meshes,
+                                   const LinkPieceOptions& options) {
+  BoundingPieces bounding;
+  std::vector<std::vector<Vec3>>& pieces = bounding.pieces;
   switch (shape.kind) {
     case CollisionShape::Kind::Box: {
       std::vector<Vec3> corners;
@@ -82,6 +120,7 @@ std::vector<std::vector<Vec3>> shapeConvexPieces(const CollisionShape& shape,
         }
       }
       pieces.push_back(std::move(prism));
+      bounding.boundingError = r - shape.radius;  // at the prism's side edges
       break;
     }
     case CollisionShape::Kind::Sphere: {
@@ -92,6 +131,7 @@ std::vector<std::vector<Vec3>> shapeConvexPieces(const CollisionShape& shape,
       }
       for (Vec3& p : points) p *= shape.radius / inradius;
       pieces.push_back(std::move(points));
+      bounding.boundingError = shape.radius / inradius - shape.radius;  // at the vertices
       break;
     }
     case CollisionShape::Kind::Mesh: {
@@ -101,14 +141,20 @@ std::vector<std::vector<Vec3>> shapeConvexPieces(const CollisionShape& shape,
       }
       TriangleMesh mesh = found->second;
       for (Vec3& v : mesh.vertices) v = v.cwiseProduct(shape.size);
-      pieces = boundingConvexPieces(mesh, shape.meshPath, options);
+      bounding = boundingMeshPieces(mesh, shape.meshPath, options);
       break;
     }
   }
   for (auto& piece : pieces) {
     for (Vec3& v : piece) v = shape.origin * v;
   }
-  return pieces;
+  return bounding;
+}
+
+std::vector<std::vector<Vec3>> shapeConvexPieces(const CollisionShape& shape,
+                                                 const LinkMeshes& meshes,
+                                                 const LinkPieceOptions& options) {
+  return boundingShapePieces(shape, meshes, options).pieces;
 }
 
 RobotCollisionModel::RobotCollisionModel(RobotModel model, const LinkMeshes& meshes,
@@ -116,11 +162,13 @@ RobotCollisionModel::RobotCollisionModel(RobotModel model, const LinkMeshes& mes
     : model_(std::move(model)) {
   const auto& links = model_.links();
   std::vector<int> partOfLink(links.size(), -1);
+  shapeBoundingErrors_.resize(links.size());
   for (std::size_t l = 0; l < links.size(); ++l) {
     std::vector<std::vector<Vec3>> pieces;
     for (const CollisionShape& shape : links[l].collisions) {
-      for (auto& piece : shapeConvexPieces(shape, meshes, pieceOptions))
-        pieces.push_back(std::move(piece));
+      BoundingPieces bounding = boundingShapePieces(shape, meshes, pieceOptions);
+      for (auto& piece : bounding.pieces) pieces.push_back(std::move(piece));
+      shapeBoundingErrors_[l].push_back(bounding.boundingError);
     }
     if (pieces.empty()) continue;
     partOfLink[l] = static_cast<int>(parts_.size());

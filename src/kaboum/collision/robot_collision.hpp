@@ -4,6 +4,7 @@
 // passed to every const query.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <optional>
 #include <span>
@@ -26,10 +27,28 @@ using namespace kaboum::kinematics;
 struct LinkPieceOptions {
   bool decompose = false;
   DecompositionOptions decomposition;  // used when `decompose`
+  // While a decomposition stops at its piece limit with its estimated error above ε, the limit is
+  // doubled and the mesh decomposed again, at most this many times (so that a scene's predicates
+  // are ε-precise where the pieces allow it, §6.1.1); the result with the smallest error is kept.
+  std::size_t pieceLimitDoublings = 0;
+  // What computes decomposeBounding's result (e.g. io::DecompositionCache, which keeps them on
+  // disk); empty: decomposeBounding itself.
+  std::function<Decomposition(const TriangleMesh&, const DecompositionOptions&)> decomposer;
 };
 
-// The convex pieces that bound a link mesh (their union contains it). Throws InputError naming
+// Convex pieces that bound a shape (their union contains it), and how far they reach beyond it at
+// most: for a decomposition its estimate (DecompositionStats::estimatedError), for a mesh's hull
+// the distance measured on samples of the hull, for primitives the exact distance.
+struct BoundingPieces {
+  std::vector<std::vector<Vec3>> pieces;
+  double boundingError = 0.0;
+};
+
+// The convex pieces that bound a link mesh and their bounding error. Throws InputError naming
 // `what` for a mesh without volume.
+BoundingPieces boundingMeshPieces(const TriangleMesh& mesh, const std::string& what,
+                                  const LinkPieceOptions& options = {});
+// boundingMeshPieces(...).pieces.
 std::vector<std::vector<Vec3>> boundingConvexPieces(const TriangleMesh& mesh,
                                                     const std::string& what,
                                                     const LinkPieceOptions& options = {});
@@ -42,6 +61,9 @@ using LinkMeshes = std::map<std::string, TriangleMesh>;
 // applied): a box's corners, a cylinder's circumscribed 16-sided prism, a sphere's circumscribed
 // 42-vertex geodesic polytope, a mesh's bounding convex pieces (the mesh taken from `meshes`;
 // InputError naming the path when it is not there).
+BoundingPieces boundingShapePieces(const CollisionShape& shape, const LinkMeshes& meshes,
+                                   const LinkPieceOptions& options = {});
+// boundingShapePieces(...).pieces.
 std::vector<std::vector<Vec3>> shapeConvexPieces(const CollisionShape& shape,
                                                  const LinkMeshes& meshes,
                                                  const LinkPieceOptions& options = {});
@@ -65,6 +87,11 @@ class RobotCollisionModel {
                       const LinkPieceOptions& pieces = {});
 
   [[nodiscard]] const RobotModel& model() const { return model_; }
+  // The bounding error of each collision shape of link `link` (BoundingPieces::boundingError), in
+  // the order of Link::collisions.
+  [[nodiscard]] const std::vector<double>& shapeBoundingErrors(std::size_t link) const {
+    return shapeBoundingErrors_.at(link);
+  }
   // The parts of the robot holding the objects `held`: its link parts (indices below
   // partCount()), then one part per held object.
   [[nodiscard]] std::size_t partCount(std::span<const Attachment> held = {}) const {
@@ -123,6 +150,7 @@ class RobotCollisionModel {
   Pose base_ = Pose::Identity();
   bool baseIsIdentity_ = true;
   std::vector<Attachment> parts_;
+  std::vector<std::vector<double>> shapeBoundingErrors_;  // by link, by collision shape
   CollisionFilter filter_;
 };
 

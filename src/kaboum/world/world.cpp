@@ -20,9 +20,22 @@ double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-LinkPieceOptions pieceOptions(const SceneSettings& settings, const WorldOptions& options) {
+// How many times the piece limit of a decomposition is doubled at most while it stops above ε.
+constexpr std::size_t kPieceLimitDoublings = 3;
+
+// The pieces of the scene's meshes: decompositions at the scene's ε (read from `cache` when there
+// is one), the piece limit raised while it keeps them above ε.
+LinkPieceOptions pieceOptions(const SceneSettings& settings, const WorldOptions& options,
+                              DecompositionCache* cache) {
   LinkPieceOptions pieces;
   pieces.decompose = options.pieces == MeshPieces::Decomposition;
+  pieces.pieceLimitDoublings = kPieceLimitDoublings;
+  if (cache) {
+    pieces.decomposer = [cache](const TriangleMesh& mesh,
+                                const DecompositionOptions& decomposition) {
+      return cache->decompose(mesh, decomposition);
+    };
+  }
   if (settings.epsilonRelative) {
     pieces.decomposition.epsilon = 0;
     pieces.decomposition.epsilonPercent = 100 * settings.epsilon;
@@ -73,7 +86,7 @@ WorldRobot buildRobot(const RobotSpec& spec, const LinkPieceOptions& pieces) {
   const Clock::time_point start = Clock::now();
   RobotModel model = robotWithHands(spec);
   const LinkMeshes meshes = readCollisionMeshes(model);
-  WorldRobot robot{spec.name, RobotCollisionModel(std::move(model), meshes, pieces), {}, 0};
+  WorldRobot robot{spec.name, RobotCollisionModel(std::move(model), meshes, pieces), {}, 0, {}, {}};
   robot.collision.setBasePose(spec.base);
   allowLinkPairs(spec, robot.collision);
   for (const JointSpec& joint : spec.joints) robot.home.push_back(joint.home);
@@ -84,17 +97,45 @@ WorldRobot buildRobot(const RobotSpec& spec, const LinkPieceOptions& pieces) {
   return robot;
 }
 
-BodyPtr buildObjectBody(const ObjectSpec& spec, const LinkPieceOptions& pieces) {
+BoundingPieces objectPieces(const ObjectSpec& spec, const LinkPieceOptions& pieces) {
   LinkMeshes meshes;
   if (spec.geometry.shape.kind == CollisionShape::Kind::Mesh) {
     meshes.emplace(spec.geometry.shape.meshPath, readMesh(spec.geometry.shape.meshPath));
   }
-  return std::make_shared<const CollisionBody>(
-      shapeConvexPieces(spec.geometry.shape, meshes, pieces), "object " + spec.name);
+  return boundingShapePieces(spec.geometry.shape, meshes, pieces);
+}
+
+// The bounding error of every tool's hand shapes (by tool, by shape), which robotWithHands
+// appended to its tool link's collision shapes in tool order.
+std::vector<std::vector<double>> handShapeErrors(const RobotSpec& spec,
+                                                 const RobotCollisionModel& collision) {
+  const auto linkOf = [&](const ToolSpec& tool) {
+    return static_cast<std::size_t>(collision.model().findLink(tool.link).value());
+  };
+  std::map<std::size_t, std::size_t> nextHandShape;  // by link: hand shapes, then the first's index
+  for (const ToolSpec& tool : spec.tools) {
+    if (tool.hand) nextHandShape[linkOf(tool)] += tool.hand->shapes.size();
+  }
+  for (auto& [link, next] : nextHandShape) next = collision.shapeBoundingErrors(link).size() - next;
+  std::vector<std::vector<double>> errors;
+  for (const ToolSpec& tool : spec.tools) {
+    std::vector<double>& shapes = errors.emplace_back();
+    if (!tool.hand) continue;
+    const std::vector<double>& linkErrors = collision.shapeBoundingErrors(linkOf(tool));
+    for (std::size_t s = 0; s < tool.hand->shapes.size(); ++s) {
+      shapes.push_back(linkErrors[nextHandShape[linkOf(tool)]++]);
+    }
+  }
+  return errors;
 }
 
 double diagonal(const CollisionBody& body) {
   return (body.bounds().box.hi - body.bounds().box.lo).norm();
+}
+
+// The bounding error allowed for a body: the larger of what the scene asks and what it reached.
+double allowance(const BodyEpsilon& epsilon) {
+  return std::max(epsilon.asked, epsilon.reached);
 }
 
 // The smallest lift tried when a movable object rests on another (metres); lifts double from here.
@@ -104,16 +145,30 @@ constexpr double kFirstLift = 1e-4;
 
 World::World(SceneDescription scene, const WorldOptions& options) : description_(std::move(scene)) {
   const Clock::time_point start = Clock::now();
-  const LinkPieceOptions pieces = pieceOptions(description_.settings, options);
+  std::optional<DecompositionCache> cache;
+  if (options.cacheDirectory) cache.emplace(*options.cacheDirectory);
+  const LinkPieceOptions pieces =
+      pieceOptions(description_.settings, options, cache ? &*cache : nullptr);
   for (std::size_t r = 0; r < description_.robots.size(); ++r) {
-    robots_.push_back(buildRobot(description_.robots[r], pieces));
+    WorldRobot& robot = robots_.emplace_back(buildRobot(description_.robots[r], pieces));
+    for (std::size_t i = 0; i < robot.collision.partCount(); ++i) {
+      const Attachment& part = robot.collision.part(i);
+      const std::vector<double>& errors =
+          robot.collision.shapeBoundingErrors(static_cast<std::size_t>(part.link));
+      robot.partEpsilon.push_back(
+          {epsilonFor(diagonal(*part.body)), *std::max_element(errors.begin(), errors.end())});
+    }
+    robot.handShapeEpsilon = handShapeErrors(description_.robots[r], robot.collision);
     names_[lowerCase(description_.robots[r].name)] = {NamedEntity::Kind::Robot, r};
   }
 
   const auto& objects = description_.objects;
   for (std::size_t o = 0; o < objects.size(); ++o) {
     const Clock::time_point objectStart = Clock::now();
-    BodyPtr body = buildObjectBody(objects[o], pieces);
+    const BoundingPieces bounding = objectPieces(objects[o], pieces);
+    BodyPtr body =
+        std::make_shared<const CollisionBody>(bounding.pieces, "object " + objects[o].name);
+    objectEpsilon_.push_back({epsilonFor(diagonal(*body)), bounding.boundingError});
     if (objects[o].movable) {
       scene_.addMovable(std::move(body), objects[o].pose, objects[o].name);
     } else {
@@ -133,7 +188,7 @@ World::World(SceneDescription scene, const WorldOptions& options) : description_
         scene_.firstCollision(initialPlacements_, scene_.body(o), pose, 0.0, o);
     if (!hit) continue;
     const double largestLift =
-        epsilonFor(diagonal(scene_.body(o))) + epsilonFor(diagonal(scene_.body(*hit))) + kFirstLift;
+        allowance(objectEpsilon_[o]) + allowance(objectEpsilon_[*hit]) + kFirstLift;
     const Pose written = pose;
     for (double lift = kFirstLift; lift <= largestLift && restingLift_[o] == 0; lift *= 2) {
       Pose raised = written;
@@ -152,6 +207,7 @@ World::World(SceneDescription scene, const WorldOptions& options) : description_
   for (std::size_t l = 0; l < description_.locations.size(); ++l) {
     names_[lowerCase(description_.locations[l].name)] = {NamedEntity::Kind::Location, l};
   }
+  if (cache) cacheReport_ = cache->report();
   validateInitialState();
   preprocessingSeconds_ = secondsSince(start);
 }

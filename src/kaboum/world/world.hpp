@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <span>
@@ -14,6 +15,7 @@
 
 #include "kaboum/collision/robot_collision.hpp"
 #include "kaboum/collision/scene.hpp"
+#include "kaboum/io/decomposition_cache.hpp"
 #include "kaboum/io/scene_file.hpp"
 #include "kaboum/world/geometric_state.hpp"
 
@@ -31,6 +33,18 @@ enum class MeshPieces { Hulls, Decomposition };
 
 struct WorldOptions {
   MeshPieces pieces = MeshPieces::Decomposition;
+  // Where mesh decompositions are kept between runs (io::DecompositionCache); nullopt: nowhere.
+  std::optional<std::filesystem::path> cacheDirectory;
+};
+
+// The bounding error of a body's convex pieces: what the scene asks (its ε, or that percentage of
+// the body's bounding-box diagonal) and what the pieces reach (the largest over the body's shapes,
+// collision::BoundingPieces). A decomposition that its piece limit stops above ε is made again with
+// up to 8 times the limit; where that does not reach ε either, `reached` says how far it got.
+struct BodyEpsilon {
+  double asked = 0;
+  double reached = 0;
+  [[nodiscard]] bool met() const { return reached <= asked; }
 };
 
 struct WorldRobot {
@@ -40,6 +54,10 @@ struct WorldRobot {
   RobotCollisionModel collision;
   std::vector<double> home;
   double preprocessingSeconds = 0;
+  // By part (collision.part(i)); and by tool of the scene file, the bounding error of each of its
+  // hand shapes.
+  std::vector<BodyEpsilon> partEpsilon;
+  std::vector<std::vector<double>> handShapeEpsilon;
 };
 
 // A name of the scene (compared without case, as the scene file does) and what it names: a robot
@@ -96,6 +114,10 @@ class World {
   [[nodiscard]] double preprocessingSeconds() const { return preprocessingSeconds_; }
   // How far a resting object was raised off its support at load time (by object id; 0 if not).
   [[nodiscard]] const std::vector<double>& restingLift() const { return restingLift_; }
+  // The bounding error of each object's pieces (by object id).
+  [[nodiscard]] const std::vector<BodyEpsilon>& objectEpsilon() const { return objectEpsilon_; }
+  // What the decomposition cache did while the World was built (all zero without one).
+  [[nodiscard]] const DecompositionCacheReport& cacheReport() const { return cacheReport_; }
 
   // Every robot at home holding nothing, every movable object at its (raised) initial pose.
   [[nodiscard]] GeometricState initialState() const;
@@ -141,6 +163,8 @@ class World {
   std::map<std::string, NamedEntity> names_;  // lower-case name
   std::vector<double> objectSeconds_;
   std::vector<double> restingLift_;
+  std::vector<BodyEpsilon> objectEpsilon_;
+  DecompositionCacheReport cacheReport_;
   SceneState initialPlacements_;  // the scene's initial placements, resting objects raised
   double preprocessingSeconds_ = 0;
 };

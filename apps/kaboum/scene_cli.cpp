@@ -1,0 +1,49 @@
+#include "scene_cli.hpp"
+
+#include <cstdlib>
+
+#include "kaboum/io/scene_file.hpp"
+
+namespace kaboum::cli {
+
+namespace {
+
+// The variable's value, or nullopt when it is unset or empty.
+std::optional<std::filesystem::path> environmentPath(const char* name) {
+  const char* value = std::getenv(name);
+  if (value == nullptr || *value == '\0') return std::nullopt;
+  return std::filesystem::path(value);
+}
+
+}  // namespace
+
+void addSceneLoadOptions(CLI::App& command, SceneLoadOptions& options) {
+  auto* noCache = command.add_flag("--no-cache", options.noCache,
+                                   "Decompose every mesh, reading and writing no cache");
+  auto* cacheDir =
+      command.add_option("--cache-dir", options.cacheDirectory,
+                         "Directory of the decomposition cache (default: $KABOUM_CACHE_DIR, else "
+                         "$XDG_CACHE_HOME/kaboum, else $HOME/.cache/kaboum)");
+  noCache->excludes(cacheDir);
+}
+
+std::optional<std::filesystem::path> defaultCacheDirectory() {
+  if (auto directory = environmentPath("KABOUM_CACHE_DIR")) return directory;
+  if (auto xdg = environmentPath("XDG_CACHE_HOME")) return *xdg / "kaboum";
+  if (auto home = environmentPath("HOME")) return *home / ".cache" / "kaboum";
+  return std::nullopt;
+}
+
+std::optional<std::filesystem::path> cacheDirectory(const SceneLoadOptions& options) {
+  if (options.noCache) return std::nullopt;
+  if (!options.cacheDirectory.empty()) return std::filesystem::path(options.cacheDirectory);
+  return defaultCacheDirectory();
+}
+
+world::World loadWorld(const std::string& sceneFile, const SceneLoadOptions& options) {
+  world::WorldOptions worldOptions;
+  worldOptions.cacheDirectory = cacheDirectory(options);
+  return world::World(io::readSceneFile(sceneFile), worldOptions);
+}
+
+}  // namespace kaboum::cli

@@ -1,0 +1,35 @@
+// Loading a scene file's World for the verbs that read scenes (scene, motion, verify-path): the
+// options they share (where the decomposition cache of §6.1.1's pre-processing lives) and the
+// reading and building itself.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "kaboum/world/world.hpp"
+
+namespace kaboum::cli {
+
+struct SceneLoadOptions {
+  bool noCache = false;
+  std::string cacheDirectory;  // empty: defaultCacheDirectory()
+};
+
+// Adds --no-cache and --cache-dir DIR to `command`.
+void addSceneLoadOptions(CLI::App& command, SceneLoadOptions& options);
+
+// $KABOUM_CACHE_DIR, else $XDG_CACHE_HOME/kaboum, else $HOME/.cache/kaboum (variables that are
+// empty count as unset); nullopt when none is set.
+std::optional<std::filesystem::path> defaultCacheDirectory();
+
+// The cache directory that `options` choose: none with --no-cache, else --cache-dir, else the
+// default.
+std::optional<std::filesystem::path> cacheDirectory(const SceneLoadOptions& options);
+
+// Reads the scene file and builds its World with decompositions cached as `options` say. Throws
+// InputError for a bad file, a failed load-time check or a cache directory that cannot be created.
+world::World loadWorld(const std::string& sceneFile, const SceneLoadOptions& options);
+
+}  // namespace kaboum::cli
