@@ -402,8 +402,8 @@ PathVerification verifyPath(const ReferenceGeometry& geometry, const ScenePath& 
       } else {
         runOfPair[i].reset();
       }
-      if (proximity.distance < smallest || (proximity.collides && smallest > 0)) {
-        smallest = proximity.collides ? 0.0 : proximity.distance;
+      if (proximity.distance < smallest) {  // 0 for a collision
+        smallest = proximity.distance;
         result.clearance = Clearance{smallest, parties[a].name, parties[b].name, samples[s]};
       }
     }
