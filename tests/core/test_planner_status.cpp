@@ -13,6 +13,8 @@ TEST(PlannerStatus, ToStringGivesTheCliStatusValues) {
   EXPECT_EQ(toString(PlannerStatus::MemoryLimit), "memory-limit");
   EXPECT_EQ(toString(PlannerStatus::NodeLimit), "node-limit");
   EXPECT_EQ(toString(PlannerStatus::Cancelled), "cancelled");
+  EXPECT_EQ(toString(PlannerStatus::InvalidStart), "invalid-start");
+  EXPECT_EQ(toString(PlannerStatus::InvalidGoal), "invalid-goal");
 }
 
 }  // namespace

@@ -16,6 +16,10 @@ std::string toString(PlannerStatus status) {
       return "node-limit";
     case PlannerStatus::Cancelled:
       return "cancelled";
+    case PlannerStatus::InvalidStart:
+      return "invalid-start";
+    case PlannerStatus::InvalidGoal:
+      return "invalid-goal";
   }
   return "unknown";
 }

@@ -155,7 +155,7 @@ struct Fields {
 };
 
 const Names kSceneKeys{"version", "settings", "robots", "objects", "locations"};
-const Names kSettingsKeys{"epsilon", "joint_step", "tool_step", "seed"};
+const Names kSettingsKeys{"epsilon", "joint_step", "tool_step", "sweep_epsilon", "seed"};
 const Names kRobotKeys{"name",         "urdf",  "base_pose",          "home",
                        "joint_limits", "tools", "allowed_collisions", "srdf"};
 const Names kJointLimitKeys{"velocity", "acceleration"};
@@ -511,6 +511,7 @@ class SceneReader {
       settings.jointStep = requirePositive(*step, angle(*step));
     }
     if (const auto step = f.find("tool_step")) settings.toolStep = positive(*step);
+    if (const auto bound = f.find("sweep_epsilon")) settings.sweepEpsilon = positive(*bound);
     if (const auto seed = f.find("seed")) {
       const std::string text = scalar(*seed, "a non-negative integer");
       const auto [end, error] =

@@ -179,6 +179,7 @@ struct SceneSettings {
   bool epsilonRelative = true;  // default: 1% of each body's bounding-box diagonal
   double jointStep = std::numbers::pi / 180;  // radians (1°)
   double toolStep = 0.005;                    // metres
+  double sweepEpsilon = 0.005;                // metres: bound of the swept volumes of motions
   std::uint64_t seed = 1;
   SourceLocation source;
 };

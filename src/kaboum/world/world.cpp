@@ -82,7 +82,7 @@ void allowLinkPairs(const RobotSpec& spec, RobotCollisionModel& collision) {
   }
 }
 
-WorldRobot buildRobot(const RobotSpec& spec, const LinkPieceOptions& pieces) {
+WorldRobot buildRobot(const RobotSpec& spec, const LinkPieceOptions& pieces, double homeMargin) {
   const Clock::time_point start = Clock::now();
   RobotModel model = robotWithHands(spec);
   const LinkMeshes meshes = readCollisionMeshes(model);
@@ -92,7 +92,7 @@ WorldRobot buildRobot(const RobotSpec& spec, const LinkPieceOptions& pieces) {
   for (const JointSpec& joint : spec.joints) robot.home.push_back(joint.home);
   std::vector<Pose> poses(robot.collision.model().links().size());
   robot.collision.model().linkPoses(robot.home, poses);
-  robot.collision.allowPairsCollidingAt(poses);
+  robot.collision.allowPairsCollidingAt(poses, homeMargin);
   robot.preprocessingSeconds = secondsSince(start);
   return robot;
 }
@@ -150,7 +150,8 @@ World::World(SceneDescription scene, const WorldOptions& options) : description_
   const LinkPieceOptions pieces =
       pieceOptions(description_.settings, options, cache ? &*cache : nullptr);
   for (std::size_t r = 0; r < description_.robots.size(); ++r) {
-    WorldRobot& robot = robots_.emplace_back(buildRobot(description_.robots[r], pieces));
+    WorldRobot& robot = robots_.emplace_back(
+        buildRobot(description_.robots[r], pieces, 2 * description_.settings.sweepEpsilon));
     for (std::size_t i = 0; i < robot.collision.partCount(); ++i) {
       const Attachment& part = robot.collision.part(i);
       const std::vector<double>& errors =
@@ -290,7 +291,8 @@ void World::computeLinkPoses(const GeometricState& state, QueryScratch& scratch)
 std::optional<Collision> World::firstCollisionOfRobot(const GeometricState& state,
                                                       const QueryScratch& scratch,
                                                       std::size_t robot,
-                                                      std::span<const std::uint8_t> against) const {
+                                                      std::span<const std::uint8_t> against,
+                                                      double margin) const {
   const auto partyOf = [&](std::size_t r, std::size_t part) {
     const std::size_t links = robots_[r].collision.partCount();
     return part < links ? Party{Party::Kind::Robot, r}
@@ -299,12 +301,12 @@ std::optional<Collision> World::firstCollisionOfRobot(const GeometricState& stat
   const RobotCollisionModel& model = robots_[robot].collision;
   const std::span<const Attachment> held = state.robots[robot].held;
   const std::span<const Pose> poses = scratch.linkPoses[robot];
-  if (model.selfCollides(poses, held, 0.0)) {
+  if (model.selfCollides(poses, held, 2 * margin)) {
     return Collision{{Party::Kind::Robot, robot}, {Party::Kind::Robot, robot}};
   }
   for (std::size_t i = 0; i < model.partCount(held); ++i) {
     if (const auto hit = scene_.firstCollision(state.placements, *model.part(i, held).body,
-                                               model.partPose(i, poses, held), 0.0)) {
+                                               model.partPose(i, poses, held), margin)) {
       return Collision{partyOf(robot, i), {Party::Kind::Object, *hit}};
     }
   }
@@ -316,7 +318,8 @@ std::optional<Collision> World::firstCollisionOfRobot(const GeometricState& stat
       const Pose pose = model.partPose(i, poses, held);
       for (std::size_t j = 0; j < otherModel.partCount(otherHeld); ++j) {
         if (bodiesCollide(*model.part(i, held).body, pose, *otherModel.part(j, otherHeld).body,
-                          otherModel.partPose(j, scratch.linkPoses[other], otherHeld), 0.0)) {
+                          otherModel.partPose(j, scratch.linkPoses[other], otherHeld),
+                          2 * margin)) {
           return Collision{partyOf(robot, i), partyOf(other, j)};
         }
       }
@@ -333,7 +336,7 @@ std::optional<Collision> World::firstCollision(const GeometricState& state,
   std::fill(scratch.againstRobots.begin(), scratch.againstRobots.end(), std::uint8_t{1});
   for (std::size_t r = 0; r < robots_.size(); ++r) {
     scratch.againstRobots[r] = 0;
-    if (auto collision = firstCollisionOfRobot(state, scratch, r, scratch.againstRobots)) {
+    if (auto collision = firstCollisionOfRobot(state, scratch, r, scratch.againstRobots, 0.0)) {
       return collision;
     }
   }

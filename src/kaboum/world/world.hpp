@@ -50,7 +50,8 @@ struct BodyEpsilon {
 struct WorldRobot {
   std::string name;
   // Link parts from the URDF; a tool's hand shapes are further collision geometry of its tool
-  // link. Pairs overlapping at home are allowed (allowPairsCollidingAt).
+  // link. Pairs within twice the scene's sweep ε of each other at home are allowed
+  // (allowPairsCollidingAt): the swept self-collision check of a motion queries at that margin.
   RobotCollisionModel collision;
   std::vector<double> home;
   double preprocessingSeconds = 0;
@@ -140,11 +141,12 @@ class World {
   void computeLinkPoses(const GeometricState& state, QueryScratch& scratch) const;
   // The first collision of robot `robot` (with what it holds) in `state`: with itself, the
   // scene's objects, and each other robot r with against[r] != 0 — the part of firstCollision that
-  // changes when the robot moves. `scratch.linkPoses` must hold the state's link poses
-  // (computeLinkPoses). Allocates nothing.
+  // changes when the robot moves — within `margin` of the scene's objects and 2 × `margin` of
+  // robots (itself included): the clearances a swept volume bounded within `margin` is checked
+  // at. `scratch.linkPoses` must hold the state's link poses (computeLinkPoses). Allocates nothing.
   [[nodiscard]] std::optional<Collision> firstCollisionOfRobot(
       const GeometricState& state, const QueryScratch& scratch, std::size_t robot,
-      std::span<const std::uint8_t> against) const;
+      std::span<const std::uint8_t> against, double margin) const;
   // The same with buffers of its own (allocates them).
   [[nodiscard]] std::optional<Collision> firstCollision(const GeometricState& state) const;
 

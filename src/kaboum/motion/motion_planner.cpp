@@ -1,0 +1,170 @@
+#include "kaboum/motion/motion_planner.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <random>
+#include <stdexcept>
+
+#include "kaboum/kinematics/random_configuration.hpp"
+#include "kaboum/motion/ompl_planner.hpp"
+#include "kaboum/motion/world_checkers.hpp"
+
+namespace kaboum::motion {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+double distance(std::span<const double> a, std::span<const double> b) {
+  double sum = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) sum += (a[i] - b[i]) * (a[i] - b[i]);
+  return std::sqrt(sum);
+}
+
+std::vector<double> interpolate(std::span<const double> a, std::span<const double> b, double t) {
+  std::vector<double> q(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) q[i] = a[i] + t * (b[i] - a[i]);
+  return q;
+}
+
+// Drops waypoints the straight motion can skip: from each kept waypoint, the farthest later one
+// it reaches by a certified segment.
+void pruneWaypoints(Waypoints& path, MotionValidator& motions) {
+  Waypoints kept{path.front()};
+  std::size_t from = 0;
+  while (from + 1 < path.size()) {
+    std::size_t to = path.size() - 1;
+    while (to > from + 1 && !motions.isValid(path[from], path[to])) --to;
+    kept.push_back(path[to]);
+    from = to;
+  }
+  path = std::move(kept);
+}
+
+// Random partial shortcuts: two points on different segments joined by a certified segment
+// replace the path between them when that is shorter.
+void shortcut(Waypoints& path, MotionValidator& motions, int attempts, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  const auto randomSegment = [&] {
+    return static_cast<std::size_t>(uniformUnit(rng) * static_cast<double>(path.size() - 1));
+  };
+  for (int attempt = 0; attempt < attempts && path.size() > 2; ++attempt) {
+    std::size_t i = randomSegment(), j = randomSegment();
+    if (i > j) std::swap(i, j);
+    const std::vector<double> a = interpolate(path[i], path[i + 1], uniformUnit(rng));
+    const std::vector<double> b = interpolate(path[j], path[j + 1], uniformUnit(rng));
+    if (j == i) continue;
+    double along = distance(a, path[i + 1]) + distance(path[j], b);
+    for (std::size_t k = i + 1; k < j; ++k) along += distance(path[k], path[k + 1]);
+    // The pieces kept of segments i and j are certified on their own: a part of a certified
+    // motion is not certified by it (its swept volume is bounded afresh).
+    if (distance(a, b) >= along || !motions.isValid(a, b) || !motions.isValid(path[i], a) ||
+        !motions.isValid(b, path[j + 1])) {
+      continue;
+    }
+    Waypoints shorter(path.begin(), path.begin() + static_cast<std::ptrdiff_t>(i + 1));
+    shorter.push_back(a);
+    shorter.push_back(b);
+    shorter.insert(shorter.end(), path.begin() + static_cast<std::ptrdiff_t>(j + 1), path.end());
+    path = std::move(shorter);
+  }
+}
+
+bool certified(const Waypoints& path, MotionValidator& motions) {
+  for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+    if (!motions.isValid(path[i], path[i + 1])) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+double sweepEpsilonOf(const MotionGroup& group, const MotionOptions& options) {
+  return options.sweepEpsilon.value_or(group.world().description().settings.sweepEpsilon);
+}
+
+std::optional<std::string> configurationProblem(const MotionGroup& group, std::span<const double> q,
+                                                double clearance) {
+  const std::size_t outside = group.firstOutsideLimits(q);
+  if (outside < group.dimension()) {
+    return fmt::format("{} is {:g}, outside its limits [{:g}, {:g}]", group.coordinateName(outside),
+                       q[outside], group.lower()[outside], group.upper()[outside]);
+  }
+  const World& world = group.world();
+  GeometricState state = group.context();
+  group.assign(q, state);
+  if (const auto collision = world.firstCollision(state)) return world.describe(*collision);
+  WorldStateChecker states(group, clearance);
+  if (const auto close = states.firstCollision(q)) {
+    return fmt::format("{} and {} are closer than the {:g} m that certified motions keep",
+                       world.describe(close->first), world.describe(close->second), clearance);
+  }
+  return std::nullopt;
+}
+
+double pathLength(const Waypoints& path) {
+  double length = 0;
+  for (std::size_t i = 0; i + 1 < path.size(); ++i) length += distance(path[i], path[i + 1]);
+  return length;
+}
+
+MotionResult planMotion(const MotionGroup& group, std::span<const double> start,
+                        std::span<const double> goal, const MotionOptions& options) {
+  const Clock::time_point begin = Clock::now();
+  if (start.size() != group.dimension() || goal.size() != group.dimension()) {
+    throw std::invalid_argument("start and goal need " + std::to_string(group.dimension()) +
+                                " joint values");
+  }
+  MotionResult result;
+  MotionStatistics& statistics = result.statistics;
+  const auto finish = [&](PlannerStatus status, std::string message) {
+    result.status = status;
+    result.message = std::move(message);
+    statistics.totalSeconds = secondsSince(begin);
+    return result;
+  };
+  const double epsilon = sweepEpsilonOf(group, options);
+  if (const auto problem = configurationProblem(group, start, epsilon)) {
+    return finish(PlannerStatus::InvalidStart, "start: " + *problem);
+  }
+  if (const auto problem = configurationProblem(group, goal, epsilon)) {
+    return finish(PlannerStatus::InvalidGoal, "goal: " + *problem);
+  }
+  WorldStateChecker states(group, epsilon, &statistics.checks);
+  SweptMotionValidator motions(group, epsilon, &statistics.checks);
+  if (motions.isValid(start, goal)) {
+    statistics.straight = true;
+    result.path = {{start.begin(), start.end()}, {goal.begin(), goal.end()}};
+    statistics.plannedWaypoints = 2;
+    statistics.plannedLength = statistics.length = pathLength(result.path);
+    return finish(PlannerStatus::Solved, {});
+  }
+  const Clock::time_point planning = Clock::now();
+  SamplingResult sampled = planWithOmpl(group, states, motions, start, goal, options,
+                                        options.timeLimit - secondsSince(begin));
+  statistics.planningSeconds = secondsSince(planning);
+  if (sampled.status != PlannerStatus::Solved) {
+    return finish(sampled.status, "no path found by " + options.planner + " within " +
+                                      std::to_string(options.timeLimit) + " s");
+  }
+  result.path = std::move(sampled.path);
+  statistics.plannedWaypoints = result.path.size();
+  statistics.plannedLength = pathLength(result.path);
+  const Clock::time_point shortcutting = Clock::now();
+  pruneWaypoints(result.path, motions);
+  shortcut(result.path, motions, options.shortcutAttempts, options.seed);
+  pruneWaypoints(result.path, motions);
+  if (!certified(result.path, motions)) {
+    throw std::logic_error("a shortcut path failed its final certification");
+  }
+  statistics.shortcutSeconds = secondsSince(shortcutting);
+  statistics.length = pathLength(result.path);
+  return finish(PlannerStatus::Solved, {});
+}
+
+}  // namespace kaboum::motion

@@ -1,0 +1,77 @@
+// Certified joint-space motion of a motion group (thesis §6.1.2 transit and transfer paths, §4.5
+// swept volumes): the straight segment when its swept volume is free, otherwise a sampling-based
+// planner of OMPL (RRT-Connect by default) with kaboum's state checker and swept-volume motion
+// validator, then shortcutting. Every segment of a returned path is certified: it cannot pass
+// through a collision between its waypoints. Reference: docs/motion.md.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "kaboum/core/planner_status.hpp"
+#include "kaboum/motion/motion_group.hpp"
+#include "kaboum/motion/validity.hpp"
+
+namespace kaboum::motion {
+
+using Waypoints = std::vector<std::vector<double>>;
+
+struct MotionOptions {
+  std::string planner = "rrtconnect";  // one of motionPlannerNames()
+  double timeLimit = 10;               // seconds for the whole query
+  std::uint64_t seed = 1;              // the same seed gives the same path
+  // Metres: bound of the swept volumes that certify motions; default the scene's sweep_epsilon
+  // (a larger one makes self-collision false alarms at home possible).
+  std::optional<double> sweepEpsilon;
+  int shortcutAttempts = 100;                 // random shortcuts tried on a planned path (0: none)
+  const std::atomic<bool>* cancel = nullptr;  // the query stops once true; not owned
+};
+
+// Where the time of one query went.
+struct MotionStatistics {
+  CheckStatistics checks;
+  bool straight = false;       // the straight segment from start to goal was certified
+  double planningSeconds = 0;  // inside the sampling-based planner, checks included
+  double shortcutSeconds = 0;  // shortcutting and the final certification, checks included
+  double totalSeconds = 0;
+  std::size_t plannedWaypoints = 0;  // before shortcutting
+  double plannedLength = 0;          // joint-space length before shortcutting
+  double length = 0;                 // joint-space length of the returned path
+};
+
+struct MotionResult {
+  PlannerStatus status = PlannerStatus::Unsolvable;
+  std::string message;  // why the query failed, naming what collides or which joint is off
+  Waypoints path;       // start ... goal when solved
+  MotionStatistics statistics;
+};
+
+// The names `MotionOptions::planner` accepts: biest, est, prm, rrt, rrtconnect, rrtstar.
+const std::vector<std::string>& motionPlannerNames();
+
+// Plans from `start` to `goal` (configurations of `group`). A start outside the joint limits or
+// colliding (anything in the context state with the group at `start`) or closer to an obstacle
+// than the sweep ε (configurationProblem) gives InvalidStart, such a goal InvalidGoal, with the
+// message naming the joint or both parties; running out of time gives TimeLimit, the cancel flag
+// Cancelled. Throws std::invalid_argument for configurations of the wrong size or an unknown
+// planner name.
+MotionResult planMotion(const MotionGroup& group, std::span<const double> start,
+                        std::span<const double> goal, const MotionOptions& options = {});
+
+// The sweep ε of a query: the option's, or the scene's.
+double sweepEpsilonOf(const MotionGroup& group, const MotionOptions& options);
+
+// Why `group` cannot be at q — a joint outside its limits, a collision of anything in the context
+// with the group at q, or a moving robot closer than `clearance` to an object (2 × `clearance` to
+// a robot) so that no certified motion can leave q, naming both parties — or nullopt when it can.
+std::optional<std::string> configurationProblem(const MotionGroup& group, std::span<const double> q,
+                                                double clearance);
+
+// Sum of the Euclidean joint-space lengths of the segments.
+double pathLength(const Waypoints& path);
+
+}  // namespace kaboum::motion

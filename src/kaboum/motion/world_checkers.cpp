@@ -1,0 +1,136 @@
+#include "kaboum/motion/world_checkers.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+namespace kaboum::motion {
+
+namespace {
+
+// Adds the seconds and the count of one check to `statistics` (when given) on destruction.
+class CheckTimer {
+ public:
+  CheckTimer(CheckStatistics* statistics, std::size_t CheckStatistics::*count,
+             double CheckStatistics::*seconds)
+      : statistics_(statistics), count_(count), seconds_(seconds) {
+    if (statistics_ != nullptr) start_ = std::chrono::steady_clock::now();
+  }
+  CheckTimer(const CheckTimer&) = delete;
+  CheckTimer& operator=(const CheckTimer&) = delete;
+  ~CheckTimer() {
+    if (statistics_ == nullptr) return;
+    ++(statistics_->*count_);
+    statistics_->*seconds_ +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  CheckStatistics* statistics_;
+  std::size_t CheckStatistics::*count_;
+  double CheckStatistics::*seconds_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace
+
+WorldStateChecker::WorldStateChecker(const MotionGroup& group, double clearance,
+                                     CheckStatistics* statistics)
+    : group_(group),
+      clearance_(clearance),
+      statistics_(statistics),
+      state_(group.context()),
+      scratch_(group.world().scratch()) {
+  group_.world().computeLinkPoses(state_, scratch_);
+  const std::size_t robots = group.world().robots().size();
+  const std::vector<std::size_t>& moving = group.robots();
+  for (std::size_t k = 0; k < moving.size(); ++k) {
+    // Against every fixed robot and the moving robots after this one.
+    std::vector<std::uint8_t> against(robots, 1);
+    for (std::size_t before = 0; before <= k; ++before) against[moving[before]] = 0;
+    against_.push_back(std::move(against));
+  }
+}
+
+bool WorldStateChecker::isValid(std::span<const double> q) {
+  return !firstCollision(q);
+}
+
+std::optional<Collision> WorldStateChecker::firstCollision(std::span<const double> q) {
+  const CheckTimer timer(statistics_, &CheckStatistics::stateChecks,
+                         &CheckStatistics::stateSeconds);
+  const World& world = group_.world();
+  group_.assign(q, state_);
+  for (const std::size_t r : group_.robots()) {
+    world.robots()[r].collision.model().linkPoses(state_.robots[r].configuration,
+                                                  scratch_.linkPoses[r]);
+  }
+  for (std::size_t k = 0; k < group_.robots().size(); ++k) {
+    if (auto collision = world.firstCollisionOfRobot(state_, scratch_, group_.robots()[k],
+                                                     against_[k], clearance_)) {
+      return collision;
+    }
+  }
+  return std::nullopt;
+}
+
+SweptMotionValidator::SweptMotionValidator(const MotionGroup& group, double sweepEpsilon,
+                                           CheckStatistics* statistics)
+    : group_(group), epsilon_(sweepEpsilon), statistics_(statistics) {
+  const World& world = group.world();
+  movingIndex_.assign(world.robots().size(), -1);
+  for (std::size_t k = 0; k < group.robots().size(); ++k) {
+    movingIndex_[group.robots()[k]] = static_cast<int>(k);
+  }
+  for (const WorldRobot& robot : world.robots()) {
+    sweeps_.push_back(std::make_unique<RobotSweep>(robot.collision));
+  }
+}
+
+bool SweptMotionValidator::isValid(std::span<const double> from, std::span<const double> to) {
+  const CheckTimer timer(statistics_, &CheckStatistics::motionChecks,
+                         &CheckStatistics::motionSeconds);
+  // One direction for both (lexicographically smaller end first), so that the verdict on a
+  // segment does not depend on the direction a planner checks it in.
+  if (std::lexicographical_compare(to.begin(), to.end(), from.begin(), from.end())) {
+    std::swap(from, to);
+  }
+  const World& world = group_.world();
+  const GeometricState& context = group_.context();
+  const std::vector<std::size_t>& moving = group_.robots();
+  // Scene objects first (the most common obstacle), then self-collision, then other robots.
+  for (std::size_t k = 0; k < moving.size(); ++k) {
+    const std::size_t r = moving[k];
+    if (sweeps_[r]->firstSceneCollision(group_.robotPart(from, k), group_.robotPart(to, k),
+                                        context.robots[r].held, world.scene(), context.placements,
+                                        0.0, epsilon_)) {
+      return false;
+    }
+  }
+  for (std::size_t k = 0; k < moving.size(); ++k) {
+    const std::size_t r = moving[k];
+    if (sweeps_[r]->selfCollides(group_.robotPart(from, k), group_.robotPart(to, k),
+                                 context.robots[r].held, 0.0, epsilon_)) {
+      return false;
+    }
+  }
+  // Each moving robot against every fixed robot and the moving robots after it.
+  const auto motionOf = [&](std::size_t r, std::span<const double> q) {
+    const int k = movingIndex_[r];
+    return k < 0 ? std::span<const double>(context.robots[r].configuration)
+                 : group_.robotPart(q, static_cast<std::size_t>(k));
+  };
+  for (std::size_t k = 0; k < moving.size(); ++k) {
+    const std::size_t a = moving[k];
+    for (std::size_t b = 0; b < world.robots().size(); ++b) {
+      if (b == a || (movingIndex_[b] >= 0 && movingIndex_[b] <= static_cast<int>(k))) continue;
+      if (sweptVolumesCollide(*sweeps_[a], motionOf(a, from), motionOf(a, to),
+                              context.robots[a].held, *sweeps_[b], motionOf(b, from),
+                              motionOf(b, to), context.robots[b].held, 0.0, epsilon_)) {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+}  // namespace kaboum::motion
