@@ -12,6 +12,7 @@
 #include "kaboum/io/path_file.hpp"
 #include "kaboum/motion/cartesian_motion.hpp"
 #include "kaboum/motion/motion_planner.hpp"
+#include "scene_cli.hpp"
 #include "verb.hpp"
 
 namespace kaboum::cli {
@@ -22,6 +23,7 @@ namespace {
 
 struct Options {
   std::string scene;
+  SceneLoadOptions load;
   std::vector<std::string> robots;
   std::string from = "home";
   std::string to;
@@ -199,7 +201,7 @@ int run(const Options& options) {
   if (options.cartesian && options.toPose.empty()) {
     throw InputError("--cartesian needs --to-pose");
   }
-  const World world(readSceneFile(options.scene));
+  const World world = loadWorld(options.scene, options.load);
   const std::vector<std::size_t> robots = robotIndices(world, options.robots);
   const MotionGroup group(world, world.initialState(), robots);
   const std::vector<double> start = parseConfiguration(options.from, "--from", group);
@@ -245,6 +247,7 @@ VerbRunner setupMotion(CLI::App& command) {
   auto options = std::make_shared<Options>();
   command.add_option("SCENE", options->scene, "Scene file (YAML, docs/scene-format.md)")
       ->required();
+  addSceneLoadOptions(command, options->load);
   command.add_option("--robot", options->robots, "A robot that moves (repeat to move several)")
       ->required();
   command
