@@ -15,6 +15,8 @@
 #include "kaboum/motion/motion_planner.hpp"
 #include "kaboum/motion/world_checkers.hpp"
 #include "kaboum/testing/data_paths.hpp"
+#include "kaboum/verify/path_verifier.hpp"
+#include "kaboum/verify/reference_geometry.hpp"
 
 namespace kaboum::motion {
 
@@ -275,10 +277,12 @@ objects:
 }
 
 // Random start and goal configurations among the KR5 cell's obstacles: every solved path is
-// certified and densely free; every failure is an invalid start or goal, named, or the time limit.
+// certified, densely free, and free for the independent verifier (FCL on the original meshes);
+// every failure is an invalid start or goal, named, or the time limit.
 TEST(MotionPlanner, RandomQueriesGiveCertifiedPathsOrNamedFailures) {
   const MotionGroup group = groupOf(kr5World(), {"kr5"});
   const RobotModel& model = kr5World().robots()[0].collision.model();
+  const verify::ReferenceGeometry reference(kr5World());
   std::mt19937_64 rng(3);
   int solved = 0;
   for (int query = 0; query < 12; ++query) {
@@ -293,6 +297,8 @@ TEST(MotionPlanner, RandomQueriesGiveCertifiedPathsOrNamedFailures) {
         ++solved;
         expectCertified(group, result.path);
         expectDenselyFree(group, result.path, 1 * kDegree);
+        EXPECT_TRUE(verify::verifyPath(reference, {{0}, result.path, {}}).collisionFree())
+            << "query " << query;
         break;
       case PlannerStatus::InvalidStart:
       case PlannerStatus::InvalidGoal:
