@@ -276,6 +276,40 @@ objects:
   expectDenselyFree(group, result.path, 0.005);
 }
 
+// The 7-DOF Barrett WAM (dart-doc), whose arm no closed form fits: planning around a post, and a
+// Cartesian line by numeric IK.
+TEST(MotionPlanner, TheSevenAxisWamPlansAroundAPostAndFollowsALine) {
+  const test::ScratchDir dir;
+  const std::string scene = R"(robots:
+  - name: wam
+    urdf: )" + wamUrdf() + R"(
+    home: {/j1: 1.2, /j2: 1.0, /j4: 1.0}
+    tools:
+      - {name: hand, link: /wam7, tcp: {position: [0, 0, 0.1]}}
+objects:
+  - name: post
+    geometry: {box: {size: [0.06, 0.06, 0.6]}}
+    pose: {position: [0.95, 0.14, 0.3]}
+)";
+  const World world(readSceneFile(dir.write("wam.yaml", scene)), kHulls);
+  const MotionGroup group(world, world.initialState(), {0});
+  const std::vector<double> start = group.configuration(group.context());
+  const MotionResult result = planMotion(group, start, with(start, 0, -1.2));
+  ASSERT_EQ(result.status, PlannerStatus::Solved) << result.message;
+  EXPECT_FALSE(result.statistics.straight);
+  expectCertified(group, result.path);
+  const verify::ReferenceGeometry reference(world);
+  EXPECT_TRUE(verify::verifyPath(reference, {{0}, result.path, {}}).collisionFree());
+
+  ToolKinematics tool(world, 0, 0);
+  std::vector<double> q = start;
+  Pose target = tool.tcpPose(q);
+  target.translation().z() -= 0.05;
+  const MotionResult line = planCartesian(group, tool, start, target);
+  ASSERT_EQ(line.status, PlannerStatus::Solved) << line.message;
+  EXPECT_TRUE(target.isApprox(tool.tcpPose(q = line.path.back()), 1e-5));
+}
+
 // Random start and goal configurations among the KR5 cell's obstacles: every solved path is
 // certified, densely free, and free for the independent verifier (FCL on the original meshes);
 // every failure is an invalid start or goal, named, or the time limit.
