@@ -215,6 +215,11 @@ TEST(World, TwoObjectsStartingInCollisionAreNamed) {
   EXPECT_NE(error.find("objects[1].pose"), std::string::npos) << error;
   EXPECT_NE(error.find("object 'brick' starts in collision with object 'table'"), std::string::npos)
       << error;
+  // The brick's bottom is 50 mm below the table's top.
+  const std::size_t depth = error.find(" mm deep: raised by that much it would be free)");
+  ASSERT_NE(depth, std::string::npos) << error;
+  const double millimetres = std::stod(error.substr(error.rfind('(', depth) + 1));
+  EXPECT_NEAR(millimetres, 50.0, 0.15) << error;
 }
 
 TEST(World, ARobotCollidingAtHomeIsNamed) {
