@@ -5,12 +5,12 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <iterator>
 #include <map>
 #include <optional>
-#include <regex>
 #include <set>
 
 #include "kaboum/core/error.hpp"
@@ -539,13 +539,18 @@ class ProblemReader {
   YamlFile request_;
 };
 
-// The four digits of "scene0001.yaml" or "request0001.yaml" after `prefix`, if the name is so.
+// The digits of "scene0001.yaml" or "request0001.yaml" after `prefix`, if the name is so.
 std::optional<std::string> problemNumber(const fs::path& file, const std::string& prefix) {
-  static const std::regex kPattern("([a-z]+)([0-9]+)\\.yaml");
-  std::smatch match;
   const std::string name = file.filename().string();
-  if (!std::regex_match(name, match, kPattern) || match[1] != prefix) return std::nullopt;
-  return match[2].str();
+  const std::string suffix = ".yaml";
+  if (!name.starts_with(prefix) || !name.ends_with(suffix)) return std::nullopt;
+  const std::string digits =
+      name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  const bool numeric = !digits.empty() && std::all_of(digits.begin(), digits.end(), [](char c) {
+    return std::isdigit(static_cast<unsigned char>(c)) != 0;
+  });
+  if (!numeric) return std::nullopt;
+  return digits;
 }
 
 }  // namespace
