@@ -12,8 +12,6 @@ namespace kaboum::motion {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 // The waypoints of a tool line: IK solutions at line parameters s in [0, 1].
 class LineFollower {
  public:
@@ -80,7 +78,7 @@ class LineFollower {
 MotionResult planCartesian(const MotionGroup& group, ToolKinematics& tool,
                            std::span<const double> start, const Pose& target,
                            const MotionOptions& options, const CartesianOptions& cartesian) {
-  const Clock::time_point begin = Clock::now();
+  MotionQuery query;
   if (group.robots().size() != 1 || group.robots().front() != tool.robot()) {
     throw std::invalid_argument("a Cartesian motion moves the tool's robot alone");
   }
@@ -88,18 +86,11 @@ MotionResult planCartesian(const MotionGroup& group, ToolKinematics& tool,
     throw std::invalid_argument("the start needs " + std::to_string(group.dimension()) +
                                 " joint values");
   }
-  MotionResult result;
+  MotionResult& result = query.result;
   MotionStatistics& statistics = result.statistics;
-  const auto finish = [&](PlannerStatus status, std::string message) {
-    result.status = status;
-    result.message = std::move(message);
-    if (status != PlannerStatus::Solved) result.path.clear();
-    statistics.totalSeconds = std::chrono::duration<double>(Clock::now() - begin).count();
-    return result;
-  };
   const double epsilon = sweepEpsilonOf(group, options);
   if (const auto problem = configurationProblem(group, start, epsilon)) {
-    return finish(PlannerStatus::InvalidStart, "start: " + *problem);
+    return query.finish(PlannerStatus::InvalidStart, "start: " + *problem);
   }
   const Pose from = tool.tcpPose(start);
   const double length = (target.translation() - from.translation()).norm();
@@ -112,26 +103,27 @@ MotionResult planCartesian(const MotionGroup& group, ToolKinematics& tool,
   std::vector<double> parameters{0.0};
   for (int i = 1; i <= steps; ++i) {
     if (auto failure = line.extend(result.path, parameters, static_cast<double>(i) / steps)) {
-      return finish(PlannerStatus::InvalidGoal, *failure);
+      return query.finish(PlannerStatus::InvalidGoal, *failure);
     }
   }
   WorldStateChecker states(group, epsilon, &statistics.checks);
   SweptMotionValidator motions(group, epsilon, &statistics.checks);
   for (std::size_t i = 1; i < result.path.size(); ++i) {
     if (const auto collision = states.firstCollision(result.path[i])) {
-      return finish(PlannerStatus::Unsolvable,
-                    fmt::format("at {:.0f}% of the line: {}", 100 * parameters[i],
-                                group.world().describe(*collision)));
+      return query.finish(PlannerStatus::Unsolvable,
+                          fmt::format("at {:.0f}% of the line: {}", 100 * parameters[i],
+                                      group.world().describe(*collision)));
     }
     if (!motions.isValid(result.path[i - 1], result.path[i])) {
-      return finish(PlannerStatus::Unsolvable,
-                    fmt::format("the swept volume between {:.0f}% and {:.0f}% of the line collides",
-                                100 * parameters[i - 1], 100 * parameters[i]));
+      return query.finish(
+          PlannerStatus::Unsolvable,
+          fmt::format("the swept volume between {:.0f}% and {:.0f}% of the line collides",
+                      100 * parameters[i - 1], 100 * parameters[i]));
     }
   }
   statistics.plannedWaypoints = result.path.size();
   statistics.plannedLength = statistics.length = pathLength(result.path);
-  return finish(PlannerStatus::Solved, {});
+  return query.finish(PlannerStatus::Solved);
 }
 
 }  // namespace kaboum::motion

@@ -115,25 +115,19 @@ double pathLength(const Waypoints& path) {
 
 MotionResult planMotion(const MotionGroup& group, std::span<const double> start,
                         std::span<const double> goal, const MotionOptions& options) {
-  const Clock::time_point begin = Clock::now();
+  MotionQuery query;
   if (start.size() != group.dimension() || goal.size() != group.dimension()) {
     throw std::invalid_argument("start and goal need " + std::to_string(group.dimension()) +
                                 " joint values");
   }
-  MotionResult result;
+  MotionResult& result = query.result;
   MotionStatistics& statistics = result.statistics;
-  const auto finish = [&](PlannerStatus status, std::string message) {
-    result.status = status;
-    result.message = std::move(message);
-    statistics.totalSeconds = secondsSince(begin);
-    return result;
-  };
   const double epsilon = sweepEpsilonOf(group, options);
   if (const auto problem = configurationProblem(group, start, epsilon)) {
-    return finish(PlannerStatus::InvalidStart, "start: " + *problem);
+    return query.finish(PlannerStatus::InvalidStart, "start: " + *problem);
   }
   if (const auto problem = configurationProblem(group, goal, epsilon)) {
-    return finish(PlannerStatus::InvalidGoal, "goal: " + *problem);
+    return query.finish(PlannerStatus::InvalidGoal, "goal: " + *problem);
   }
   WorldStateChecker states(group, epsilon, &statistics.checks);
   SweptMotionValidator motions(group, epsilon, &statistics.checks);
@@ -142,15 +136,15 @@ MotionResult planMotion(const MotionGroup& group, std::span<const double> start,
     result.path = {{start.begin(), start.end()}, {goal.begin(), goal.end()}};
     statistics.plannedWaypoints = 2;
     statistics.plannedLength = statistics.length = pathLength(result.path);
-    return finish(PlannerStatus::Solved, {});
+    return query.finish(PlannerStatus::Solved);
   }
   const Clock::time_point planning = Clock::now();
   SamplingResult sampled = planWithOmpl(group, states, motions, start, goal, options,
-                                        options.timeLimit - secondsSince(begin));
+                                        options.timeLimit - query.elapsedSeconds());
   statistics.planningSeconds = secondsSince(planning);
   if (sampled.status != PlannerStatus::Solved) {
-    return finish(sampled.status, "no path found by " + options.planner + " within " +
-                                      std::to_string(options.timeLimit) + " s");
+    return query.finish(sampled.status, "no path found by " + options.planner + " within " +
+                                            std::to_string(options.timeLimit) + " s");
   }
   result.path = std::move(sampled.path);
   statistics.plannedWaypoints = result.path.size();
@@ -164,7 +158,7 @@ MotionResult planMotion(const MotionGroup& group, std::span<const double> start,
   }
   statistics.shortcutSeconds = secondsSince(shortcutting);
   statistics.length = pathLength(result.path);
-  return finish(PlannerStatus::Solved, {});
+  return query.finish(PlannerStatus::Solved);
 }
 
 }  // namespace kaboum::motion

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -48,6 +49,29 @@ struct MotionResult {
   std::string message;  // why the query failed, naming what collides or which joint is off
   Waypoints path;       // start ... goal when solved
   MotionStatistics statistics;
+};
+
+// One query's result under construction, its clock started at construction (planMotion,
+// planCartesian).
+class MotionQuery {
+ public:
+  MotionQuery() : begin_(std::chrono::steady_clock::now()) {}
+  [[nodiscard]] double elapsedSeconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - begin_).count();
+  }
+  // The result with `status` and `message`, the path cleared unless solved, the total time set.
+  MotionResult finish(PlannerStatus status, std::string message = {}) {
+    result.status = status;
+    result.message = std::move(message);
+    if (status != PlannerStatus::Solved) result.path.clear();
+    result.statistics.totalSeconds = elapsedSeconds();
+    return std::move(result);
+  }
+
+  MotionResult result;
+
+ private:
+  std::chrono::steady_clock::time_point begin_;
 };
 
 // The names `MotionOptions::planner` accepts: biest, est, prm, rrt, rrtconnect, rrtstar.
