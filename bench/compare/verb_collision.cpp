@@ -48,14 +48,6 @@ struct CollisionBenchOptions {
   bool quiet = false;
 };
 
-// CPU time of this thread, in ns: unlike wall time, not inflated when other processes take the
-// core away (the build machine is shared).
-double threadNanoseconds() {
-  timespec now{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return 1e9 * static_cast<double>(now.tv_sec) + static_cast<double>(now.tv_nsec);
-}
-
 // One timed sweep of `query(i)` over every pair i, in CPU ns per query.
 template <class Query>
 double sweepNanoseconds(std::size_t count, Query& query) {
