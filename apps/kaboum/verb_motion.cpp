@@ -278,6 +278,11 @@ VerbRunner setupMotion(CLI::App& command) {
                   "scene's sweep_epsilon)")
       ->check(CLI::PositiveNumber);
   command
+      .add_option("--range", options->motion.range,
+                  "Joint-space length of one tree extension, radians (0: OMPL's default)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command
       .add_option("--shortcuts", options->motion.shortcutAttempts,
                   "Random shortcuts tried on a planned path")
       ->check(CLI::NonNegativeNumber)

@@ -163,11 +163,11 @@ TEST(MotionPlanner, AStartOrGoalInCollisionIsNamed) {
   const std::vector<double> intoPole = with(home, 0, 0.0);  // the arm stretched through the pole
   const MotionResult badStart = planMotion(group, intoPole, home);
   EXPECT_EQ(badStart.status, PlannerStatus::InvalidStart);
-  EXPECT_EQ(badStart.message, "start: robot 'kr5' collides with object 'pole'");
+  EXPECT_EQ(badStart.message, "start: robot 'kr5' link 'forearm' collides with object 'pole'");
   EXPECT_TRUE(badStart.path.empty());
   const MotionResult badGoal = planMotion(group, home, intoPole);
   EXPECT_EQ(badGoal.status, PlannerStatus::InvalidGoal);
-  EXPECT_EQ(badGoal.message, "goal: robot 'kr5' collides with object 'pole'");
+  EXPECT_EQ(badGoal.message, "goal: robot 'kr5' link 'forearm' collides with object 'pole'");
 }
 
 TEST(MotionPlanner, AJointOutsideItsLimitsIsNamed) {

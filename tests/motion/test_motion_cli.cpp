@@ -96,7 +96,7 @@ TEST(MotionCli, BadInputGivesOneLineAndExitCodeTwo) {
       {"--to home --cartesian", "--cartesian needs --to-pose"},
       {"--to-pose 0,0", "--to-pose: '0,0' is not x,y,z or x,y,z,roll,pitch,yaw"},
       {"--from shoulder_yaw=0 --to home",
-       scene + ": start: robot 'kr5' collides with object 'pole'"},
+       scene + ": start: robot 'kr5' link 'wrist' collides with object 'pole'"},
       {"--to shoulder_pitch=3", scene + ": goal: shoulder_pitch of robot 'kr5' is 3, outside its "
                                         "limits [-1.74533, 2.35619]"},
   };
@@ -114,8 +114,8 @@ TEST(MotionCli, HelpNamesEveryOption) {
   EXPECT_EQ(result.exitCode, 0);
   for (const char* option :
        {"--robot", "--from", "--to", "--to-pose", "--tool", "--cartesian", "--planner",
-        "--time-limit", "--seed", "--sweep-epsilon", "--shortcuts", "--output", "--json", "--quiet",
-        "--no-cache", "--cache-dir"}) {
+        "--time-limit", "--seed", "--sweep-epsilon", "--range", "--shortcuts", "--output", "--json",
+        "--quiet", "--no-cache", "--cache-dir"}) {
     EXPECT_NE(result.out.find(option), std::string::npos) << option;
   }
 }

@@ -102,27 +102,37 @@ class MotionAdapter final : public ob::MotionValidator {
     ++(valid ? valid_ : invalid_);
     return valid;
   }
-  // The last valid state by bisection over certified prefixes of the motion.
+  // The last valid state: the last of kScanSamples evenly spaced states before the first invalid
+  // one (cheap state checks), then the longest certified prefix up to it, halving it at most
+  // kCertifyTries times (each try one sweep).
   bool checkMotion(const ob::State* s1, const ob::State* s2,
                    std::pair<ob::State*, double>& lastValid) const override {
     if (checkMotion(s1, s2)) return true;
-    double good = 0, bad = 1;
     ob::State* probe = si_->allocState();
-    for (int step = 0; step < kBisections; ++step) {
-      const double middle = 0.5 * (good + bad);
-      si_->getStateSpace()->interpolate(s1, s2, middle, probe);
-      (validator_.isValid(valuesOf(s1, dimension_), valuesOf(probe, dimension_)) ? good : bad) =
-          middle;
+    double reach = 0;
+    for (int k = 1; k <= kScanSamples; ++k) {
+      const double t = static_cast<double>(k) / kScanSamples;
+      si_->getStateSpace()->interpolate(s1, s2, t, probe);
+      if (!si_->isValid(probe)) break;
+      reach = t;
     }
-    if (lastValid.first != nullptr)
+    double good = 0;
+    for (int attempt = 0; attempt < kCertifyTries && reach > 0 && good == 0; ++attempt) {
+      si_->getStateSpace()->interpolate(s1, s2, reach, probe);
+      if (validator_.isValid(valuesOf(s1, dimension_), valuesOf(probe, dimension_))) good = reach;
+      reach *= 0.5;
+    }
+    if (lastValid.first != nullptr) {
       si_->getStateSpace()->interpolate(s1, s2, good, lastValid.first);
+    }
     lastValid.second = good;
     si_->freeState(probe);
     return false;
   }
 
  private:
-  static constexpr int kBisections = 8;
+  static constexpr int kScanSamples = 16;
+  static constexpr int kCertifyTries = 3;
   motion::MotionValidator& validator_;
   std::size_t dimension_;
 };
@@ -197,6 +207,9 @@ SamplingResult planWithOmpl(const MotionGroup& group, StateValidityChecker& stat
   auto problem = std::make_shared<ob::ProblemDefinition>(si);
   problem->setStartAndGoalStates(startState, goalState);
   const ob::PlannerPtr planner = found->second(si, seed + 1);
+  if (options.range > 0 && planner->params().hasParam("range")) {
+    planner->params().setParam("range", std::to_string(options.range));
+  }
   planner->setProblemDefinition(problem);
   planner->setup();
 

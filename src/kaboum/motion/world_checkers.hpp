@@ -4,6 +4,7 @@
 // through a collision between its ends. Both allocate nothing per call once built.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -57,9 +58,14 @@ class SweptMotionValidator final : public MotionValidator {
   [[nodiscard]] double sweepEpsilon() const { return epsilon_; }
 
  private:
+  // Configurations checked for a plain collision before the sweep (fractions of the motion).
+  static constexpr std::array<double, 4> kPrefilterSamples{1.0, 0.5, 0.25, 0.75};
+
   const MotionGroup& group_;
   double epsilon_;
   CheckStatistics* statistics_;
+  WorldStateChecker samples_;  // at clearance 0
+  std::vector<double> sample_;
   // One sweep per robot of the world (fixed robots sweep their constant configuration).
   std::vector<std::unique_ptr<RobotSweep>> sweeps_;
   std::vector<int> movingIndex_;  // per world robot: its index among the moving robots, or -1
