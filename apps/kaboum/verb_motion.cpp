@@ -166,6 +166,7 @@ std::vector<double> goalForPose(const MotionGroup& group, ToolKinematics& tool,
 
 nlohmann::json statisticsJson(const MotionStatistics& s) {
   return {{"straight", s.straight},
+          {"sweep_epsilon", s.sweepEpsilon},
           {"total_seconds", s.totalSeconds},
           {"planning_seconds", s.planningSeconds},
           {"shortcut_seconds", s.shortcutSeconds},
@@ -184,6 +185,7 @@ void printResult(const MotionResult& result, const std::string& planner) {
   if (!result.message.empty()) fmt::print("reason:    {}\n", result.message);
   if (result.status != PlannerStatus::Solved) return;
   fmt::print("planner:   {}\n", s.straight ? "straight segment" : planner);
+  fmt::print("sweep ε:   {:g} m\n", s.sweepEpsilon);
   fmt::print("waypoints: {} ({} planned)\n", result.path.size(), s.plannedWaypoints);
   fmt::print("length:    {:.4f} ({:.4f} planned), joint space\n", s.length, s.plannedLength);
   fmt::print("time:      {:.6f} s (planning {:.6f} s, shortcutting {:.6f} s)\n", s.totalSeconds,

@@ -84,11 +84,12 @@ void expectDenselyFree(const MotionGroup& group, const Waypoints& path,
   }
 }
 
-// Each segment of `path` certified again by a fresh validator.
-void expectCertified(const MotionGroup& group, const Waypoints& path) {
-  SweptMotionValidator motions(group, group.world().description().settings.sweepEpsilon);
-  for (std::size_t s = 0; s + 1 < path.size(); ++s) {
-    EXPECT_TRUE(motions.isValid(path[s], path[s + 1])) << "segment " << s;
+// Each segment of a solved query's path certified again by a fresh validator at the query's ε.
+void expectCertified(const MotionGroup& group, const MotionResult& result) {
+  ASSERT_GT(result.statistics.sweepEpsilon, 0.0);
+  SweptMotionValidator motions(group, result.statistics.sweepEpsilon);
+  for (std::size_t s = 0; s + 1 < result.path.size(); ++s) {
+    EXPECT_TRUE(motions.isValid(result.path[s], result.path[s + 1])) << "segment " << s;
   }
 }
 
@@ -121,7 +122,7 @@ TEST(MotionPlanner, PlansAroundThePoleWithCertifiedSegmentsThatAreDenselyFree) {
   EXPECT_LE(result.statistics.length, result.statistics.plannedLength + 1e-12);
   EXPECT_NEAR(result.statistics.length, pathLength(result.path), 1e-12);
   EXPECT_GT(result.statistics.checks.motionChecks, 0u);
-  expectCertified(group, result.path);
+  expectCertified(group, result);
   expectDenselyFree(group, result.path);
 }
 
@@ -150,7 +151,7 @@ TEST(MotionPlanner, EveryPlannerByNameReturnsACertifiedPath) {
     options.planner = name;
     const MotionResult result = planMotion(group, start, goal, options);
     ASSERT_EQ(result.status, PlannerStatus::Solved) << name << ": " << result.message;
-    expectCertified(group, result.path);
+    expectCertified(group, result);
   }
   MotionOptions unknown;
   unknown.planner = "teleport";
@@ -168,6 +169,20 @@ TEST(MotionPlanner, AStartOrGoalInCollisionIsNamed) {
   const MotionResult badGoal = planMotion(group, home, intoPole);
   EXPECT_EQ(badGoal.status, PlannerStatus::InvalidGoal);
   EXPECT_EQ(badGoal.message, "goal: robot 'kr5' link 'forearm' collides with object 'pole'");
+}
+
+TEST(MotionPlanner, AGoalCloserThanTheSweepEpsilonIsReachedAtASmallerOne) {
+  const MotionGroup group = groupOf(kr5World(), {"kr5"});
+  const std::vector<double> home = group.configuration(group.context());
+  // Turn towards the pole until the arm is free but within the 5 mm sweep ε of it.
+  std::vector<double> goal = home;
+  while (!configurationProblem(group, goal, 0.005)) goal[0] -= 0.001;
+  ASSERT_FALSE(configurationProblem(group, goal, 0.0));
+  const MotionResult result = planMotion(group, home, goal);
+  ASSERT_EQ(result.status, PlannerStatus::Solved) << result.message;
+  EXPECT_LT(result.statistics.sweepEpsilon, 0.005);
+  EXPECT_GE(result.statistics.sweepEpsilon, 0.005 / 16);
+  expectCertified(group, result);
 }
 
 TEST(MotionPlanner, AJointOutsideItsLimitsIsNamed) {
@@ -235,7 +250,7 @@ TEST(MotionPlanner, AHeldObjectIsCarriedAndCertifiedWithTheArm) {
   const MotionResult result = planMotion(holding, start, goal);
   ASSERT_EQ(result.status, PlannerStatus::Solved) << result.message;
   EXPECT_FALSE(result.statistics.straight);
-  expectCertified(holding, result.path);
+  expectCertified(holding, result);
   expectDenselyFree(holding, result.path);
 }
 
@@ -249,7 +264,7 @@ TEST(MotionPlanner, TwoArmsMoveTogetherWithoutMeetingEachOther) {
   goal[8] = 60 * kDegree;
   const MotionResult result = planMotion(group, start, goal);
   ASSERT_EQ(result.status, PlannerStatus::Solved) << result.message;
-  expectCertified(group, result.path);
+  expectCertified(group, result);
   expectDenselyFree(group, result.path, 0.5 * kDegree);
 }
 
@@ -272,7 +287,7 @@ objects:
   const MotionResult result = planMotion(group, start, goal);
   ASSERT_EQ(result.status, PlannerStatus::Solved) << result.message;
   EXPECT_FALSE(result.statistics.straight);
-  expectCertified(group, result.path);
+  expectCertified(group, result);
   expectDenselyFree(group, result.path, 0.005);
 }
 
@@ -297,7 +312,7 @@ objects:
   const MotionResult result = planMotion(group, start, with(start, 0, -1.2));
   ASSERT_EQ(result.status, PlannerStatus::Solved) << result.message;
   EXPECT_FALSE(result.statistics.straight);
-  expectCertified(group, result.path);
+  expectCertified(group, result);
   const verify::ReferenceGeometry reference(world);
   EXPECT_TRUE(verify::verifyPath(reference, {{0}, result.path, {}}).collisionFree());
 
@@ -329,7 +344,7 @@ TEST(MotionPlanner, RandomQueriesGiveCertifiedPathsOrNamedFailures) {
     switch (result.status) {
       case PlannerStatus::Solved:
         ++solved;
-        expectCertified(group, result.path);
+        expectCertified(group, result);
         expectDenselyFree(group, result.path, 1 * kDegree);
         EXPECT_TRUE(verify::verifyPath(reference, {{0}, result.path, {}}).collisionFree())
             << "query " << query;
@@ -409,7 +424,7 @@ TEST(CartesianMotion, FollowsTheToolLineWithinTheDeviation) {
     }
     EXPECT_LE(offLine(middle), cartesian.maxDeviation);
   }
-  expectCertified(group, result.path);
+  expectCertified(group, result);
 }
 
 TEST(CartesianMotion, ALineThroughAnObstacleIsRejectedNamingIt) {

@@ -89,6 +89,7 @@ MotionResult planCartesian(const MotionGroup& group, ToolKinematics& tool,
   MotionResult& result = query.result;
   MotionStatistics& statistics = result.statistics;
   const double epsilon = sweepEpsilonOf(group, options);
+  statistics.sweepEpsilon = epsilon;
   if (const auto problem = configurationProblem(group, start, epsilon)) {
     return query.finish(PlannerStatus::InvalidStart, "start: " + *problem);
   }

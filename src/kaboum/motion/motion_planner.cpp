@@ -14,6 +14,10 @@ namespace kaboum::motion {
 
 namespace {
 
+// The smallest sweep ε a query falls back to when an end is close to an obstacle, as a fraction
+// of the asked one.
+constexpr double kSmallestSweepFraction = 1.0 / 16;
+
 using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) {
@@ -122,13 +126,26 @@ MotionResult planMotion(const MotionGroup& group, std::span<const double> start,
   }
   MotionResult& result = query.result;
   MotionStatistics& statistics = result.statistics;
-  const double epsilon = sweepEpsilonOf(group, options);
-  if (const auto problem = configurationProblem(group, start, epsilon)) {
-    return query.finish(PlannerStatus::InvalidStart, "start: " + *problem);
+  // An end closer to an obstacle than the sweep ε (but free) halves ε for the whole query, down to
+  // kSmallestSweepFraction of it: certification holds at any ε, a smaller one costs finer sweeps.
+  const double asked = sweepEpsilonOf(group, options);
+  double epsilon = asked;
+  for (;;) {
+    const auto startProblem = configurationProblem(group, start, epsilon);
+    const auto goalProblem = configurationProblem(group, goal, epsilon);
+    if (!startProblem && !goalProblem) break;
+    const bool halve = epsilon > kSmallestSweepFraction * asked &&
+                       !configurationProblem(group, start, 0.0) &&
+                       !configurationProblem(group, goal, 0.0);
+    if (halve) {
+      epsilon *= 0.5;
+    } else if (startProblem) {
+      return query.finish(PlannerStatus::InvalidStart, "start: " + *startProblem);
+    } else {
+      return query.finish(PlannerStatus::InvalidGoal, "goal: " + *goalProblem);
+    }
   }
-  if (const auto problem = configurationProblem(group, goal, epsilon)) {
-    return query.finish(PlannerStatus::InvalidGoal, "goal: " + *problem);
-  }
+  statistics.sweepEpsilon = epsilon;
   WorldStateChecker states(group, epsilon, &statistics.checks);
   SweptMotionValidator motions(group, epsilon, &statistics.checks);
   if (motions.isValid(start, goal)) {

@@ -40,6 +40,7 @@ struct MotionOptions {
 struct MotionStatistics {
   CheckStatistics checks;
   bool straight = false;       // the straight segment from start to goal was certified
+  double sweepEpsilon = 0;     // metres: the ε the query certified its motions at
   double planningSeconds = 0;  // inside the sampling-based planner, checks included
   double shortcutSeconds = 0;  // shortcutting and the final certification, checks included
   double totalSeconds = 0;
@@ -82,10 +83,11 @@ class MotionQuery {
 const std::vector<std::string>& motionPlannerNames();
 
 // Plans from `start` to `goal` (configurations of `group`). A start outside the joint limits or
-// colliding (anything in the context state with the group at `start`) or closer to an obstacle
-// than the sweep ε (configurationProblem) gives InvalidStart, such a goal InvalidGoal, with the
-// message naming the joint or both parties; running out of time gives TimeLimit, the cancel flag
-// Cancelled. Throws std::invalid_argument for configurations of the wrong size or an unknown
+// colliding (anything in the context state with the group at `start`) gives InvalidStart, such a
+// goal InvalidGoal, with the message naming the joint or both parties. An end closer to an
+// obstacle than the sweep ε halves ε for the query (statistics.sweepEpsilon), down to 1/16 of it;
+// closer still is InvalidStart or InvalidGoal too; running out of time gives TimeLimit, the cancel
+// flag Cancelled. Throws std::invalid_argument for configurations of the wrong size or an unknown
 // planner name.
 MotionResult planMotion(const MotionGroup& group, std::span<const double> start,
                         std::span<const double> goal, const MotionOptions& options = {});
