@@ -25,6 +25,8 @@ void addSceneLoadOptions(CLI::App& command, SceneLoadOptions& options) {
                          "Directory of the decomposition cache (default: $KABOUM_CACHE_DIR, else "
                          "$XDG_CACHE_HOME/kaboum, else $HOME/.cache/kaboum)");
   noCache->excludes(cacheDir);
+  command.add_option("--threads", options.threads,
+                     "Threads decomposing the scene's meshes (default: the hardware's)");
 }
 
 std::optional<std::filesystem::path> defaultCacheDirectory() {
@@ -43,6 +45,7 @@ std::optional<std::filesystem::path> cacheDirectory(const SceneLoadOptions& opti
 world::World loadWorld(const std::string& sceneFile, const SceneLoadOptions& options) {
   world::WorldOptions worldOptions;
   worldOptions.cacheDirectory = cacheDirectory(options);
+  worldOptions.threads = options.threads;
   return world::World(io::readSceneFile(sceneFile), worldOptions);
 }
 

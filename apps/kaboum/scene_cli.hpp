@@ -15,9 +15,10 @@ namespace kaboum::cli {
 struct SceneLoadOptions {
   bool noCache = false;
   std::string cacheDirectory;  // empty: defaultCacheDirectory()
+  unsigned threads = 0;        // decomposing meshes; 0: the hardware's
 };
 
-// Adds --no-cache and --cache-dir DIR to `command`.
+// Adds --no-cache, --cache-dir DIR and --threads N to `command`.
 void addSceneLoadOptions(CLI::App& command, SceneLoadOptions& options);
 
 // $KABOUM_CACHE_DIR, else $XDG_CACHE_HOME/kaboum, else $HOME/.cache/kaboum (variables that are
@@ -28,7 +29,8 @@ std::optional<std::filesystem::path> defaultCacheDirectory();
 // default.
 std::optional<std::filesystem::path> cacheDirectory(const SceneLoadOptions& options);
 
-// Reads the scene file and builds its World with decompositions cached as `options` say. Throws
+// Reads the scene file and builds its World with decompositions cached as `options` say, on
+// `options.threads` threads (WorldOptions::threads). Throws
 // InputError for a bad file, a failed load-time check or a cache directory that cannot be created.
 world::World loadWorld(const std::string& sceneFile, const SceneLoadOptions& options);
 

@@ -1,7 +1,8 @@
-// `kaboum scene FILE [--json] [--quiet] [--no-cache | --cache-dir DIR]`: reads a scene file, builds
-// its World (collision geometry of robots, hands and objects, thesis §6.1.1) and reports what was
-// built, the ε each body reaches, what the decomposition cache did, and whether the initial state
-// is collision-free (exit code 2 with the error line when it is not).
+// `kaboum scene FILE [--json] [--quiet] [--no-cache | --cache-dir DIR] [--threads N]`: reads a
+// scene file, builds its World (collision geometry of robots, hands and objects, thesis §6.1.1) and
+// reports what was built, the ε each body reaches, the distinct meshes decomposed, what the
+// decomposition cache did, and whether the initial state is collision-free (exit code 2 with the
+// error line when it is not).
 #include <fmt/format.h>
 
 #include <iostream>
@@ -122,6 +123,11 @@ void printReport(const std::string& file, const World& world,
     fmt::print("  {}: {}{}\n", location.name, regionKind(location),
                location.supportSurface ? ", support surface" : "");
   }
+  const DecompositionSummary& decompositions = world.decompositions();
+  std::size_t shapes = 0;
+  for (const MeshDecomposition& mesh : decompositions.meshes) shapes += mesh.shapes;
+  fmt::print("meshes:        {} distinct of {} mesh shape(s) decomposed, {} thread(s)\n",
+             decompositions.meshes.size(), shapes, decompositions.threads);
   fmt::print("cache:         {}\n", cacheText(cacheDirectory, world.cacheReport()));
   fmt::print("preprocessing: {:.3f} s\n", world.preprocessingSeconds());
 }
@@ -174,12 +180,22 @@ nlohmann::json reportJson(const std::string& file, const World& world, bool coll
                          {"region", regionKind(location)},
                          {"support_surface", location.supportSurface}});
   }
+  nlohmann::json meshes = nlohmann::json::array();
+  for (const MeshDecomposition& mesh : world.decompositions().meshes) {
+    meshes.push_back({{"mesh", mesh.mesh},
+                      {"triangles", mesh.triangles},
+                      {"shapes", mesh.shapes},
+                      {"attempts", mesh.attempts},
+                      {"seconds", mesh.seconds}});
+  }
   return {{"file", file},
           {"epsilon", scene.settings.epsilon},
           {"epsilon_relative", scene.settings.epsilonRelative},
           {"robots", robots},
           {"objects", objects},
           {"locations", locations},
+          {"meshes", meshes},
+          {"threads", world.decompositions().threads},
           {"cache", cacheJson(cacheDirectory, world.cacheReport())},
           {"preprocessing_seconds", world.preprocessingSeconds()},
           {"initial_state_collision_free", collisionFree}};

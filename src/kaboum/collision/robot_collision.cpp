@@ -95,6 +95,16 @@ std::vector<std::vector<Vec3>> boundingConvexPieces(const TriangleMesh& mesh,
   return boundingMeshPieces(mesh, what, options).pieces;
 }
 
+TriangleMesh shapeMesh(const CollisionShape& shape, const LinkMeshes& meshes) {
+  const auto found = meshes.find(shape.meshPath);
+  if (found == meshes.end()) {
+    throw InputError(shape.meshPath + ": collision mesh not loaded (io::readCollisionMeshes)");
+  }
+  TriangleMesh mesh = found->second;
+  for (Vec3& v : mesh.vertices) v = v.cwiseProduct(shape.size);
+  return mesh;
+}
+
 BoundingPieces boundingShapePieces(const CollisionShape& shape, const LinkMeshes& meshes,
                                    const LinkPieceOptions& options) {
   BoundingPieces bounding;
@@ -134,16 +144,9 @@ BoundingPieces boundingShapePieces(const CollisionShape& shape, const LinkMeshes
       bounding.boundingError = shape.radius / inradius - shape.radius;  // at the vertices
       break;
     }
-    case CollisionShape::Kind::Mesh: {
-      const auto found = meshes.find(shape.meshPath);
-      if (found == meshes.end()) {
-        throw InputError(shape.meshPath + ": collision mesh not loaded (io::readCollisionMeshes)");
-      }
-      TriangleMesh mesh = found->second;
-      for (Vec3& v : mesh.vertices) v = v.cwiseProduct(shape.size);
-      bounding = boundingMeshPieces(mesh, shape.meshPath, options);
+    case CollisionShape::Kind::Mesh:
+      bounding = boundingMeshPieces(shapeMesh(shape, meshes), shape.meshPath, options);
       break;
-    }
   }
   for (auto& piece : pieces) {
     for (Vec3& v : piece) v = shape.origin * v;

@@ -58,6 +58,10 @@ std::vector<std::vector<Vec3>> boundingConvexPieces(const TriangleMesh& mesh,
 using LinkMeshes = std::map<std::string, TriangleMesh>;
 
 // Vertices of a polytope containing a URDF collision shape, in the link frame (the shape's origin
+// The mesh of a mesh shape, scaled by its `size`, in the shape's frame (its origin not applied):
+// what boundingShapePieces decomposes. InputError naming the path when `meshes` lacks it.
+TriangleMesh shapeMesh(const CollisionShape& shape, const LinkMeshes& meshes);
+
 // applied): a box's corners, a cylinder's circumscribed 16-sided prism, a sphere's circumscribed
 // 42-vertex geodesic polytope, a mesh's bounding convex pieces (the mesh taken from `meshes`;
 // InputError naming the path when it is not there).

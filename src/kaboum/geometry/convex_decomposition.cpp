@@ -226,6 +226,11 @@ Decomposition decomposeBounding(const TriangleMesh& mesh, const DecompositionOpt
   return decomposeOn(mesh, options, inlineWorkers);
 }
 
+Decomposition decomposeBounding(const TriangleMesh& mesh, const DecompositionOptions& options,
+                                WorkerPool& workers) {
+  return decomposeOn(mesh, options, workers);
+}
+
 std::vector<Decomposition> decomposeBoundingEach(std::span<const TriangleMesh> meshes,
                                                  const DecompositionOptions& options,
                                                  unsigned threads) {

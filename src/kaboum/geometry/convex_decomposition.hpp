@@ -12,6 +12,10 @@
 #include "kaboum/geometry/mesh_comparison.hpp"
 #include "kaboum/geometry/triangle_mesh.hpp"
 
+namespace kaboum {
+class WorkerPool;
+}
+
 namespace kaboum::geometry {
 
 struct DecompositionOptions {
@@ -77,6 +81,10 @@ struct Decomposition {
 // splitting first. Deterministic for a given seed. Throws InputError for an empty mesh, non-finite
 // coordinates, a mesh that cannot be oriented, or one with no volume.
 Decomposition decomposeBounding(const TriangleMesh& mesh, const DecompositionOptions& options);
+// The same, the candidate cuts' hulls and step 3's pieces run as tasks of `workers` (which may be
+// running other batches: a task of another mesh's decomposition, say); equal to the result above.
+Decomposition decomposeBounding(const TriangleMesh& mesh, const DecompositionOptions& options,
+                                WorkerPool& workers);
 
 // decomposeBounding for every mesh (e.g. every collision mesh of a robot's links), run on
 // `threads` threads, the largest meshes first; the results do not depend on the thread count. An

@@ -347,7 +347,8 @@ std::filesystem::path DecompositionCache::entryPath(const TriangleMesh& mesh,
 }
 
 Decomposition DecompositionCache::decompose(const TriangleMesh& mesh,
-                                            const DecompositionOptions& options) {
+                                            const DecompositionOptions& options,
+                                            WorkerPool* workers) {
   const Digest key = entryKey(mesh, options);
   const std::filesystem::path path = directory_ / (hex(key) + std::string(kEntrySuffix));
   std::string problem;
@@ -360,7 +361,8 @@ Decomposition DecompositionCache::decompose(const TriangleMesh& mesh,
     }
     problem = std::move(decoded.problem);
   }
-  Decomposition decomposition = decomposeBounding(mesh, options);
+  Decomposition decomposition =
+      workers ? decomposeBounding(mesh, options, *workers) : decomposeBounding(mesh, options);
   const std::optional<std::string> writeError =
       writeAtomically(path, encodeEntry(key, decomposition));
   const std::lock_guard lock(mutex_);

@@ -40,8 +40,10 @@ class DecompositionCache {
   // decomposeBounding(mesh, options): read from the entry of (mesh, options) when it is valid, else
   // computed and stored (a write that fails is a warning of the report, not an error). A hit
   // equals the computed result bit for bit, stats included (seconds: those of the run that stored
-  // it). Throws what decomposeBounding throws.
-  Decomposition decompose(const TriangleMesh& mesh, const DecompositionOptions& options);
+  // it). Computed on `workers` when given (decomposeBounding's overload; the same result). Throws
+  // what decomposeBounding throws.
+  Decomposition decompose(const TriangleMesh& mesh, const DecompositionOptions& options,
+                          WorkerPool* workers = nullptr);
 
   [[nodiscard]] const std::filesystem::path& directory() const { return directory_; }
   // The file of the entry of (mesh, options), whether or not it exists.

@@ -5,10 +5,14 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <numeric>
 #include <stdexcept>
+#include <thread>
+#include <tuple>
 
 #include "kaboum/core/error.hpp"
 #include "kaboum/core/text.hpp"
+#include "kaboum/core/worker_pool.hpp"
 #include "kaboum/io/mesh_io.hpp"
 #include "kaboum/io/urdf_loader.hpp"
 
@@ -25,19 +29,12 @@ double secondsSince(Clock::time_point start) {
 // How many times the piece limit of a decomposition is doubled at most while it stops above ε.
 constexpr std::size_t kPieceLimitDoublings = 3;
 
-// The pieces of the scene's meshes: decompositions at the scene's ε (read from `cache` when there
-// is one), the piece limit raised while it keeps them above ε.
-LinkPieceOptions pieceOptions(const SceneSettings& settings, const WorldOptions& options,
-                              DecompositionCache* cache) {
+// The pieces of the scene's meshes: decompositions at the scene's ε, the piece limit raised while
+// it keeps them above ε (their decomposer: MeshDecompositions::buildOptions).
+LinkPieceOptions pieceOptions(const SceneSettings& settings, const WorldOptions& options) {
   LinkPieceOptions pieces;
   pieces.decompose = options.pieces == MeshPieces::Decomposition;
   pieces.pieceLimitDoublings = kPieceLimitDoublings;
-  if (cache) {
-    pieces.decomposer = [cache](const TriangleMesh& mesh,
-                                const DecompositionOptions& decomposition) {
-      return cache->decompose(mesh, decomposition);
-    };
-  }
   if (settings.epsilonRelative) {
     pieces.decomposition.epsilon = 0;
     pieces.decomposition.epsilonPercent = 100 * settings.epsilon;
@@ -84,10 +81,139 @@ void allowLinkPairs(const RobotSpec& spec, RobotCollisionModel& collision) {
   }
 }
 
-WorldRobot buildRobot(const RobotSpec& spec, const LinkPieceOptions& pieces, double homeMargin) {
+// The bytes of a mesh's vertices and triangles: meshes with equal bytes have equal decompositions.
+std::string meshBytes(const TriangleMesh& mesh) {
+  std::string bytes;
+  bytes.reserve(8 + 24 * mesh.vertices.size() + 12 * mesh.triangles.size());
+  const auto append = [&](const auto& value) {
+    bytes.append(reinterpret_cast<const char*>(&value), sizeof value);
+  };
+  append(static_cast<std::uint64_t>(mesh.vertices.size()));
+  for (const Vec3& v : mesh.vertices) {
+    for (int i = 0; i < 3; ++i) append(v[i]);
+  }
+  for (const Triangle& t : mesh.triangles) append(t);
+  return bytes;
+}
+
+bool sameOptions(const DecompositionOptions& a, const DecompositionOptions& b) {
+  const auto fields = [](const DecompositionOptions& o) {
+    return std::tie(o.epsilon, o.epsilonPercent, o.maxPieces, o.concavitySamples, o.bridgeSamples,
+                    o.refineRounds, o.seed);
+  };
+  return fields(a) == fields(b);
+}
+
+// The decompositions of a World's distinct meshes (by content: the second arm of a model shares the
+// first's), made before any body is built: one task per distinct mesh on a WorkerPool, each trying
+// its piece limits in turn as boundingMeshPieces does (through the cache when there is one), the
+// decompositions themselves sharing the pool's idle threads. The bodies are then built in scene
+// order reading them, so that they equal a sequential build's whatever the thread count.
+class MeshDecompositions {
+ public:
+  MeshDecompositions(LinkPieceOptions pieces, DecompositionCache* cache)
+      : pieces_(std::move(pieces)), cache_(cache) {}
+
+  // A mesh shape (its mesh as boundingShapePieces decomposes it, shapeMesh) of `owner`: robot r
+  // is owner r, object o owner robots + o.
+  void add(TriangleMesh mesh, const std::string& file, std::size_t owner) {
+    const auto [found, added] = index_.try_emplace(meshBytes(mesh), meshes_.size());
+    if (added) meshes_.push_back({std::move(mesh), file, owner, 0, {}, 0.0});
+    ++meshes_[found->second].shapes;
+  }
+
+  // Decomposes every distinct mesh, the largest first. One that fails is left to the build, which
+  // throws its error where a sequential build would.
+  void decomposeAll(WorkerPool& workers) {
+    std::vector<std::size_t> order(meshes_.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return meshes_[a].mesh.triangleCount() > meshes_[b].mesh.triangleCount();
+    });
+    workers.run(order.size(), [&](std::size_t k) {
+      Distinct& distinct = meshes_[order[k]];
+      LinkPieceOptions recording = pieces_;
+      recording.decomposer = [&](const TriangleMesh& mesh, const DecompositionOptions& options) {
+        Decomposition decomposition = compute(mesh, options, &workers);
+        distinct.attempts.emplace_back(options, decomposition);
+        return decomposition;
+      };
+      const Clock::time_point start = Clock::now();
+      try {
+        (void)boundingMeshPieces(distinct.mesh, distinct.file, recording);
+      } catch (...) {  // NOLINT(bugprone-empty-catch): the build decomposes it again and throws
+      }
+      distinct.seconds = secondsSince(start);
+    });
+  }
+
+  // The options the bodies are built with: decompositions read from here (a missing one computed).
+  [[nodiscard]] LinkPieceOptions buildOptions() const {
+    LinkPieceOptions options = pieces_;
+    options.decomposer = [this](const TriangleMesh& mesh, const DecompositionOptions& asked) {
+      const auto found = index_.find(meshBytes(mesh));
+      if (found != index_.end()) {
+        for (const auto& [attempt, decomposition] : meshes_[found->second].attempts) {
+          if (sameOptions(attempt, asked)) return decomposition;
+        }
+      }
+      return compute(mesh, asked, nullptr);
+    };
+    return options;
+  }
+
+  // Seconds of the decomposition tasks of the meshes `owner` names first.
+  [[nodiscard]] double secondsOf(std::size_t owner) const {
+    double seconds = 0;
+    for (const Distinct& distinct : meshes_) {
+      if (distinct.owner == owner) seconds += distinct.seconds;
+    }
+    return seconds;
+  }
+
+  [[nodiscard]] std::vector<MeshDecomposition> summary() const {
+    std::vector<MeshDecomposition> summary;
+    for (const Distinct& distinct : meshes_) {
+      summary.push_back({distinct.file, distinct.mesh.triangleCount(), distinct.shapes,
+                         distinct.attempts.size(), distinct.seconds});
+    }
+    return summary;
+  }
+
+ private:
+  struct Distinct {
+    TriangleMesh mesh;
+    std::string file;
+    std::size_t owner = 0;
+    std::size_t shapes = 0;
+    std::vector<std::pair<DecompositionOptions, Decomposition>> attempts;
+    double seconds = 0;
+  };
+
+  Decomposition compute(const TriangleMesh& mesh, const DecompositionOptions& options,
+                        WorkerPool* workers) const {
+    if (cache_) return cache_->decompose(mesh, options, workers);
+    return workers ? decomposeBounding(mesh, options, *workers) : decomposeBounding(mesh, options);
+  }
+
+  LinkPieceOptions pieces_;
+  DecompositionCache* cache_;
+  std::map<std::string, std::size_t> index_;  // by meshBytes
+  std::vector<Distinct> meshes_;              // in the order added
+};
+
+// The meshes of an object's geometry (none for a primitive).
+LinkMeshes objectMeshes(const ObjectSpec& spec) {
+  LinkMeshes meshes;
+  if (spec.geometry.shape.kind == CollisionShape::Kind::Mesh) {
+    meshes.emplace(spec.geometry.shape.meshPath, readMesh(spec.geometry.shape.meshPath));
+  }
+  return meshes;
+}
+
+WorldRobot buildRobot(const RobotSpec& spec, RobotModel model, const LinkMeshes& meshes,
+                      const LinkPieceOptions& pieces, double homeMargin) {
   const Clock::time_point start = Clock::now();
-  RobotModel model = robotWithHands(spec);
-  const LinkMeshes meshes = readCollisionMeshes(model);
   WorldRobot robot{spec.name, RobotCollisionModel(std::move(model), meshes, pieces), {}, 0, {}, {}};
   robot.collision.setBasePose(spec.base);
   allowLinkPairs(spec, robot.collision);
@@ -97,14 +223,6 @@ WorldRobot buildRobot(const RobotSpec& spec, const LinkPieceOptions& pieces, dou
   robot.collision.allowPairsCollidingAt(poses, homeMargin);
   robot.preprocessingSeconds = secondsSince(start);
   return robot;
-}
-
-BoundingPieces objectPieces(const ObjectSpec& spec, const LinkPieceOptions& pieces) {
-  LinkMeshes meshes;
-  if (spec.geometry.shape.kind == CollisionShape::Kind::Mesh) {
-    meshes.emplace(spec.geometry.shape.meshPath, readMesh(spec.geometry.shape.meshPath));
-  }
-  return boundingShapePieces(spec.geometry.shape, meshes, pieces);
 }
 
 // The bounding error of every tool's hand shapes (by tool, by shape), which robotWithHands
@@ -168,11 +286,67 @@ World::World(SceneDescription scene, const WorldOptions& options) : description_
   const Clock::time_point start = Clock::now();
   std::optional<DecompositionCache> cache;
   if (options.cacheDirectory) cache.emplace(*options.cacheDirectory);
-  const LinkPieceOptions pieces =
-      pieceOptions(description_.settings, options, cache ? &*cache : nullptr);
-  for (std::size_t r = 0; r < description_.robots.size(); ++r) {
-    WorldRobot& robot = robots_.emplace_back(
-        buildRobot(description_.robots[r], pieces, 2 * description_.settings.sweepEpsilon));
+  const auto& robotSpecs = description_.robots;
+  const auto& objects = description_.objects;
+  const std::size_t robotCount = robotSpecs.size();
+  WorkerPool workers(options.threads > 0 ? options.threads : std::thread::hardware_concurrency());
+  decompositions_.threads = workers.threads();
+  // Three rounds on the pool, each task writing only its own outputs (a failure: the error of the
+  // first robot, then object, in scene order): every file read (robots with their hands, objects),
+  // the distinct meshes decomposed, the bodies built from those decompositions.
+  std::vector<std::optional<RobotModel>> models(robotCount);
+  std::vector<LinkMeshes> robotMeshes(robotCount), bodyMeshes(objects.size());
+  std::vector<double> loadSeconds(robotCount);
+  workers.run(robotCount + objects.size(), [&](std::size_t i) {
+    if (i >= robotCount) {
+      bodyMeshes[i - robotCount] = objectMeshes(objects[i - robotCount]);
+      return;
+    }
+    const Clock::time_point robotStart = Clock::now();
+    models[i].emplace(robotWithHands(robotSpecs[i]));
+    robotMeshes[i] = readCollisionMeshes(*models[i]);
+    loadSeconds[i] = secondsSince(robotStart);
+  });
+  MeshDecompositions decompositions(pieceOptions(description_.settings, options),
+                                    cache ? &*cache : nullptr);
+  if (options.pieces == MeshPieces::Decomposition) {
+    for (std::size_t r = 0; r < models.size(); ++r) {
+      for (const Link& link : models[r]->links()) {
+        for (const CollisionShape& shape : link.collisions) {
+          if (shape.kind != CollisionShape::Kind::Mesh) continue;
+          decompositions.add(shapeMesh(shape, robotMeshes[r]), shape.meshPath, r);
+        }
+      }
+    }
+    for (std::size_t o = 0; o < objects.size(); ++o) {
+      const CollisionShape& shape = objects[o].geometry.shape;
+      if (shape.kind != CollisionShape::Kind::Mesh) continue;
+      decompositions.add(shapeMesh(shape, bodyMeshes[o]), shape.meshPath, robotCount + o);
+    }
+    decompositions.decomposeAll(workers);
+    decompositions_.meshes = decompositions.summary();
+  }
+  const LinkPieceOptions pieces = decompositions.buildOptions();
+  std::vector<std::optional<WorldRobot>> built(robotCount);
+  std::vector<BoundingPieces> objectBounding(objects.size());
+  std::vector<BodyPtr> objectBodies(objects.size());
+  objectSeconds_.assign(objects.size(), 0.0);
+  workers.run(robotCount + objects.size(), [&](std::size_t i) {
+    const Clock::time_point buildStart = Clock::now();
+    if (i < robotCount) {
+      built[i].emplace(buildRobot(robotSpecs[i], std::move(*models[i]), robotMeshes[i], pieces,
+                                  2 * description_.settings.sweepEpsilon));
+      built[i]->preprocessingSeconds += loadSeconds[i] + decompositions.secondsOf(i);
+      return;
+    }
+    const std::size_t o = i - robotCount;
+    objectBounding[o] = boundingShapePieces(objects[o].geometry.shape, bodyMeshes[o], pieces);
+    objectBodies[o] = std::make_shared<const CollisionBody>(objectBounding[o].pieces,
+                                                            "object " + objects[o].name);
+    objectSeconds_[o] = secondsSince(buildStart) + decompositions.secondsOf(i);
+  });
+  for (std::size_t r = 0; r < robotCount; ++r) {
+    WorldRobot& robot = robots_.emplace_back(std::move(*built[r]));
     for (std::size_t i = 0; i < robot.collision.partCount(); ++i) {
       const Attachment& part = robot.collision.part(i);
       const std::vector<double>& errors =
@@ -184,20 +358,15 @@ World::World(SceneDescription scene, const WorldOptions& options) : description_
     names_[lowerCase(description_.robots[r].name)] = {NamedEntity::Kind::Robot, r};
   }
 
-  const auto& objects = description_.objects;
   for (std::size_t o = 0; o < objects.size(); ++o) {
-    const Clock::time_point objectStart = Clock::now();
-    const BoundingPieces bounding = objectPieces(objects[o], pieces);
-    BodyPtr body =
-        std::make_shared<const CollisionBody>(bounding.pieces, "object " + objects[o].name);
-    objectEpsilon_.push_back({epsilonFor(diagonal(*body)), bounding.boundingError});
+    BodyPtr body = std::move(objectBodies[o]);
+    objectEpsilon_.push_back({epsilonFor(diagonal(*body)), objectBounding[o].boundingError});
     if (objects[o].movable) {
       scene_.addMovable(std::move(body), objects[o].pose, objects[o].name);
     } else {
       scene_.add(std::move(body), objects[o].pose, objects[o].name);
     }
     names_[lowerCase(objects[o].name)] = {NamedEntity::Kind::Object, o};
-    objectSeconds_.push_back(secondsSince(objectStart));
   }
 
   // Movable objects start free, raised off what they rest on when touching is all that collides.

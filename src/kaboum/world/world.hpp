@@ -35,6 +35,26 @@ struct WorldOptions {
   MeshPieces pieces = MeshPieces::Decomposition;
   // Where mesh decompositions are kept between runs (io::DecompositionCache); nullopt: nowhere.
   std::optional<std::filesystem::path> cacheDirectory;
+  // Threads of the WorkerPool that decomposes the scene's distinct meshes (0: the hardware's,
+  // std::thread::hardware_concurrency()). The World does not depend on it.
+  unsigned threads = 0;
+};
+
+// One distinct mesh of the scene (by its vertex and triangle bytes, scaled as its shapes are):
+// decomposed once per World however many link, hand or object shapes have it.
+struct MeshDecomposition {
+  std::string mesh;  // the file of its first shape
+  std::size_t triangles = 0;
+  std::size_t shapes = 0;    // link, hand and object shapes with this mesh
+  std::size_t attempts = 0;  // decompositions made or read: one per piece limit tried
+  double seconds = 0;        // wall time of its task (computed, or read from the cache)
+};
+
+// How a World decomposed its meshes: the threads, and the distinct meshes in the order the scene
+// first names them (robots' links and hands, then objects); empty with MeshPieces::Hulls.
+struct DecompositionSummary {
+  unsigned threads = 1;
+  std::vector<MeshDecomposition> meshes;
 };
 
 // The bounding error of a body's convex pieces: what the scene asks (its ε, or that percentage of
@@ -54,6 +74,9 @@ struct WorldRobot {
   // (allowPairsCollidingAt): the swept self-collision check of a motion queries at that margin.
   RobotCollisionModel collision;
   std::vector<double> home;
+  // Its URDF read and its model built, plus the decomposition tasks of the distinct meshes it
+  // names first (tasks run in parallel: the robots' and objects' seconds may add up to more than
+  // World::preprocessingSeconds()).
   double preprocessingSeconds = 0;
   // By part (collision.part(i)); and by tool of the scene file, the bounding error of each of its
   // hand shapes.
@@ -110,7 +133,8 @@ class World {
   // its fraction of the diagonal).
   [[nodiscard]] double epsilonFor(double diagonal) const;
 
-  // Seconds spent building each object's body (by object id), and the whole World.
+  // Seconds spent building each object's body (by object id; with the decomposition task of a
+  // mesh it names first, as WorldRobot::preprocessingSeconds), and the whole World.
   [[nodiscard]] const std::vector<double>& objectSeconds() const { return objectSeconds_; }
   [[nodiscard]] double preprocessingSeconds() const { return preprocessingSeconds_; }
   // How far a resting object was raised off its support at load time (by object id; 0 if not).
@@ -120,6 +144,8 @@ class World {
   // What the decomposition cache did while the World was built (all zero without one).
   [[nodiscard]] const DecompositionCacheReport& cacheReport() const { return cacheReport_; }
 
+  // The distinct meshes decomposed and the threads that did it.
+  [[nodiscard]] const DecompositionSummary& decompositions() const { return decompositions_; }
   // Every robot at home holding nothing, every movable object at its (raised) initial pose.
   [[nodiscard]] GeometricState initialState() const;
   [[nodiscard]] QueryScratch scratch() const;
@@ -169,6 +195,7 @@ class World {
   DecompositionCacheReport cacheReport_;
   SceneState initialPlacements_;  // the scene's initial placements, resting objects raised
   double preprocessingSeconds_ = 0;
+  DecompositionSummary decompositions_;
 };
 
 }  // namespace kaboum::world
