@@ -134,7 +134,9 @@ TEST(World, AHeldObjectMovesWithItsLink) {
   placed.placements[world.scene().slot(bottle)].pose = linkPose(world, placed, flange) * atTcp;
   collision = world.firstCollision(placed);
   ASSERT_TRUE(collision);
-  EXPECT_EQ(collision->first, (Party{Party::Kind::Robot, 0}));
+  EXPECT_EQ(collision->first.kind, Party::Kind::Robot);
+  EXPECT_EQ(collision->first.index, 0u);
+  EXPECT_EQ(collision->first.link, flange);
   EXPECT_EQ(collision->second, object(world, "bottle"));
 
   // Held where the table is at home, it collides with the table; turning the arm takes it away.
@@ -228,7 +230,7 @@ TEST(World, ARobotCollidingAtHomeIsNamed) {
                             "    geometry: {box: {size: [0.1, 0.1, 2.0]}}\n"
                             "    pose: {position: [0, 0, 1.0]}\n"));
   EXPECT_NE(error.find("scene.yaml:"), std::string::npos) << error;
-  EXPECT_NE(error.find("robot 'twin' at home collides with object 'pillar'"), std::string::npos)
+  EXPECT_NE(error.find("robot 'twin' link 'torso' at home collides with object 'pillar'"), std::string::npos)
       << error;
 }
 
@@ -275,7 +277,7 @@ TEST(SceneCli, BadScenesExitWithTwo) {
   const std::string path = dir.write("colliding.yaml", text);
   result = test::runCli(dir, "scene --no-cache '" + path + "'");
   EXPECT_EQ(result.exitCode, 2);
-  EXPECT_NE(result.err.find("robot 'twin' at home collides with object 'pillar'"),
+  EXPECT_NE(result.err.find("robot 'twin' link 'torso' at home collides with object 'pillar'"),
             std::string::npos)
       << result.err;
 }

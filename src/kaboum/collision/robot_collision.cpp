@@ -220,8 +220,8 @@ std::size_t RobotCollisionModel::allowPairsCollidingAt(std::span<const Pose> lin
   return allowed;
 }
 
-bool RobotCollisionModel::selfCollides(std::span<const Pose> linkPoses,
-                                       std::span<const Attachment> held, double margin) const {
+std::optional<std::pair<std::size_t, std::size_t>> RobotCollisionModel::firstSelfCollision(
+    std::span<const Pose> linkPoses, std::span<const Attachment> held, double margin) const {
   checkHeld(held);
   const std::size_t count = partCount(held);
   for (std::size_t i = 0; i < count; ++i) {
@@ -230,11 +230,11 @@ bool RobotCollisionModel::selfCollides(std::span<const Pose> linkPoses,
     for (std::size_t j = i + 1; j < count; ++j) {
       if (checksPair(i, j, held) &&
           bodiesCollide(bodyI, poseI, *part(j, held).body, partPose(j, linkPoses, held), margin)) {
-        return true;
+        return std::pair{i, j};
       }
     }
   }
-  return false;
+  return std::nullopt;
 }
 
 std::optional<std::size_t> RobotCollisionModel::firstSceneCollision(

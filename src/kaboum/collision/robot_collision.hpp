@@ -9,6 +9,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "kaboum/collision/body.hpp"
@@ -57,11 +58,11 @@ std::vector<std::vector<Vec3>> boundingConvexPieces(const TriangleMesh& mesh,
 // caller reads them (io::readCollisionMeshes), so that collision reads no files.
 using LinkMeshes = std::map<std::string, TriangleMesh>;
 
-// Vertices of a polytope containing a URDF collision shape, in the link frame (the shape's origin
 // The mesh of a mesh shape, scaled by its `size`, in the shape's frame (its origin not applied):
 // what boundingShapePieces decomposes. InputError naming the path when `meshes` lacks it.
 TriangleMesh shapeMesh(const CollisionShape& shape, const LinkMeshes& meshes);
 
+// Vertices of a polytope containing a URDF collision shape, in the link frame (the shape's origin
 // applied): a box's corners, a cylinder's circumscribed 16-sided prism, a sphere's circumscribed
 // 42-vertex geodesic polytope, a mesh's bounding convex pieces (the mesh taken from `meshes`;
 // InputError naming the path when it is not there).
@@ -140,9 +141,15 @@ class RobotCollisionModel {
     return pose;
   }
 
+  // The first two checked parts (i < j) of the robot holding `held` within `margin` of each
+  // other, if any. Allocates nothing.
+  [[nodiscard]] std::optional<std::pair<std::size_t, std::size_t>> firstSelfCollision(
+      std::span<const Pose> linkPoses, std::span<const Attachment> held, double margin) const;
   // Whether two checked parts of the robot holding `held` come within `margin`. Allocates nothing.
   [[nodiscard]] bool selfCollides(std::span<const Pose> linkPoses, std::span<const Attachment> held,
-                                  double margin) const;
+                                  double margin) const {
+    return firstSelfCollision(linkPoses, held, margin).has_value();
+  }
   // The first object of `scene` in `sceneState` within `margin` of a part of the robot holding
   // `held`, if any. Allocates nothing.
   [[nodiscard]] std::optional<std::size_t> firstSceneCollision(

@@ -488,14 +488,14 @@ std::optional<Collision> World::firstCollisionOfRobot(const GeometricState& stat
                                                       double margin) const {
   const auto partyOf = [&](std::size_t r, std::size_t part) {
     const std::size_t links = robots_[r].collision.partCount();
-    return part < links ? Party{Party::Kind::Robot, r}
+    return part < links ? Party{Party::Kind::Robot, r, robots_[r].collision.part(part).link}
                         : Party{Party::Kind::Object, state.robots[r].heldObjects[part - links]};
   };
   const RobotCollisionModel& model = robots_[robot].collision;
   const std::span<const Attachment> held = state.robots[robot].held;
   const std::span<const Pose> poses = scratch.linkPoses[robot];
-  if (model.selfCollides(poses, held, 2 * margin)) {
-    return Collision{{Party::Kind::Robot, robot}, {Party::Kind::Robot, robot}};
+  if (const auto parts = model.firstSelfCollision(poses, held, 2 * margin)) {
+    return Collision{partyOf(robot, parts->first), partyOf(robot, parts->second)};
   }
   for (std::size_t i = 0; i < model.partCount(held); ++i) {
     if (const auto hit = scene_.firstCollision(state.placements, *model.part(i, held).body,
@@ -550,14 +550,24 @@ std::optional<Collision> World::firstCollision(const GeometricState& state) cons
 }
 
 std::string World::describe(const Party& party) const {
-  return party.kind == Party::Kind::Robot ? "robot '" + robots_[party.index].name + "'"
-                                          : "object '" + scene_.name(party.index) + "'";
+  if (party.kind == Party::Kind::Object) return "object '" + scene_.name(party.index) + "'";
+  const WorldRobot& robot = robots_[party.index];
+  if (party.link < 0) return "robot '" + robot.name + "'";
+  return "robot '" + robot.name + "' link '" +
+         robot.collision.model().links()[static_cast<std::size_t>(party.link)].name + "'";
 }
 
 std::string World::describe(const Collision& collision) const {
-  if (collision.first == collision.second)
-    return describe(collision.first) + " collides with itself";
-  return describe(collision.first) + " collides with " + describe(collision.second);
+  const Party& first = collision.first;
+  const Party& second = collision.second;
+  if (first.kind == Party::Kind::Robot && second.kind == Party::Kind::Robot &&
+      first.index == second.index && second.link >= 0) {
+    return describe(first) + " collides with its link '" +
+           robots_[second.index].collision.model().links()[static_cast<std::size_t>(second.link)]
+               .name +
+           "'";
+  }
+  return describe(first) + " collides with " + describe(second);
 }
 
 }  // namespace kaboum::world

@@ -99,10 +99,11 @@ struct Party {
   enum class Kind { Robot, Object };
   Kind kind = Kind::Object;
   std::size_t index = 0;  // robot index or object id
+  int link = -1;          // a robot's: the link (RobotModel::links()) of the colliding part
   bool operator==(const Party&) const = default;
 };
 
-// Two parties within distance 0 of each other (first == second: a robot's self-collision).
+// Two parties within distance 0 of each other (two parties of one robot: its self-collision).
 struct Collision {
   Party first;
   Party second;
@@ -143,9 +144,9 @@ class World {
   [[nodiscard]] const std::vector<BodyEpsilon>& objectEpsilon() const { return objectEpsilon_; }
   // What the decomposition cache did while the World was built (all zero without one).
   [[nodiscard]] const DecompositionCacheReport& cacheReport() const { return cacheReport_; }
-
   // The distinct meshes decomposed and the threads that did it.
   [[nodiscard]] const DecompositionSummary& decompositions() const { return decompositions_; }
+
   // Every robot at home holding nothing, every movable object at its (raised) initial pose.
   [[nodiscard]] GeometricState initialState() const;
   [[nodiscard]] QueryScratch scratch() const;
@@ -176,9 +177,10 @@ class World {
   // The same with buffers of its own (allocates them).
   [[nodiscard]] std::optional<Collision> firstCollision(const GeometricState& state) const;
 
-  // "robot 'twin'", "object 'bottle'": a party's name for messages.
+  // "robot 'twin' link 'left_link3'", "object 'bottle'": a party's name for messages.
   [[nodiscard]] std::string describe(const Party& party) const;
-  // "robot 'twin' collides with object 'table'"; "robot 'twin' collides with itself".
+  // "robot 'twin' link 'left_flange' collides with object 'table'"; "robot 'twin' link
+  // 'left_link3' collides with its link 'torso'".
   [[nodiscard]] std::string describe(const Collision& collision) const;
 
  private:
@@ -193,9 +195,9 @@ class World {
   std::vector<double> restingLift_;
   std::vector<BodyEpsilon> objectEpsilon_;
   DecompositionCacheReport cacheReport_;
+  DecompositionSummary decompositions_;
   SceneState initialPlacements_;  // the scene's initial placements, resting objects raised
   double preprocessingSeconds_ = 0;
-  DecompositionSummary decompositions_;
 };
 
 }  // namespace kaboum::world
