@@ -79,6 +79,18 @@ class CollisionScene {
     return hit;
   }
 
+  // Whether some piece of `state` (except `ignore`) has a box overlapping `box` inflated by
+  // `margin` and a bounding sphere within `margin` of (centre, radius): the broad phase alone, to
+  // skip the narrow phase of everything inside that box and sphere. Allocates nothing.
+  [[nodiscard]] bool anyPieceNear(std::span<const Placement> state, const Aabb& box,
+                                  const Vec3& centre, double radius, double margin,
+                                  std::optional<std::size_t> ignore = {}) const {
+    bool near = false;
+    forEachPieceNear(state, box, centre, radius, margin, ignore,
+                     [&](std::size_t, std::size_t, const Pose&) { return !(near = true); });
+    return near;
+  }
+
   // An object of `state` with a piece within `margin` of `body` at `pose` (model-model collision,
   // Definition 1 (1)), skipping `ignore`: the fixed obstacles in the order the tree visits them,
   // then the present movable objects by slot; so the same for the same state and query, but not

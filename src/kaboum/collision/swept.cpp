@@ -77,10 +77,31 @@ std::optional<std::size_t> RobotSweep::firstSceneCollision(std::span<const doubl
                                                            const CollisionScene& scene,
                                                            std::span<const Placement> sceneState,
                                                            double margin, double epsilon) {
-  for (const Piece& piece : sweep(qa, qb, held, epsilon)) {
-    if (auto hit = scene.firstWithin(sceneState, piece.shape, piece.box, piece.centre, piece.radius,
-                                     margin + epsilon)) {
-      return hit;
+  const std::size_t finest = sample(qa, qb, held, epsilon);
+  for (std::size_t i = 0; i < robot_.partCount(held); ++i) {
+    const PieceBounds& bounds = robot_.part(i, held).body->bounds();
+    const std::size_t n = static_cast<std::size_t>(subdivisions_[i]);
+    const std::size_t stride = finest / n;
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::span<const Pose> start = samplePoses(k * stride),
+                                  end = samplePoses((k + 1) * stride);
+      // The part's swept box and bounding sphere contain its swept pieces: with no scene piece
+      // near them, the pieces need not be built.
+      const Pose from = robot_.partPose(i, start, held), to = robot_.partPose(i, end, held);
+      const Vec3 centreStart = from * bounds.centre, centreEnd = to * bounds.centre;
+      if (!scene.anyPieceNear(
+              sceneState, transformedAabb(bounds.box, from).merged(transformedAabb(bounds.box, to)),
+              0.5 * (centreStart + centreEnd),
+              bounds.radius + 0.5 * (centreEnd - centreStart).norm(), margin + epsilon)) {
+        continue;
+      }
+      sweptPieces(i, held, start, end, piecesI_);
+      for (const Piece& piece : piecesI_) {
+        if (auto hit = scene.firstWithin(sceneState, piece.shape, piece.box, piece.centre,
+                                         piece.radius, margin + epsilon)) {
+          return hit;
+        }
+      }
     }
   }
   return std::nullopt;
@@ -110,6 +131,17 @@ bool anyPiecesWithin(std::span<const RobotSweep::Piece> a, std::span<const Robot
 bool RobotSweep::partsMeetDuring(std::size_t i, std::size_t j, std::span<const Attachment> held,
                                  std::span<const double> qa, std::span<const double> qb,
                                  const Interval& interval, int depth, double reach) {
+  // The parts' bounding spheres swept over the interval contain every swept piece: apart, no
+  // piece pair can meet, and the pieces need not be built.
+  const auto sweptSphere = [&](std::size_t part) {
+    const PieceBounds& bounds = robot_.part(part, held).body->bounds();
+    const Vec3 start = robot_.partPose(part, interval.start, held) * bounds.centre;
+    const Vec3 end = robot_.partPose(part, interval.end, held) * bounds.centre;
+    return std::pair{0.5 * (start + end), bounds.radius + 0.5 * (end - start).norm()};
+  };
+  const auto [centreI, radiusI] = sweptSphere(i);
+  const auto [centreJ, radiusJ] = sweptSphere(j);
+  if (!spheresWithin(centreI, radiusI, centreJ, radiusJ, reach)) return false;
   sweptPieces(i, held, interval.start, interval.end, piecesI_);
   sweptPieces(j, held, interval.start, interval.end, piecesJ_);
   if (!anyPiecesWithin(piecesI_, piecesJ_, reach)) return false;
