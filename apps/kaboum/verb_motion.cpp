@@ -215,8 +215,7 @@ int run(const Options& options) {
     if (robots.size() != 1) throw InputError("--to-pose moves one robot: give one --robot");
     ToolKinematics tool(world, robots.front(), toolIndex(world, robots.front(), options.tool),
                         options.motion.seed);
-    std::vector<double> startCopy = start;
-    const Pose target = parsePose(options.toPose, tool.tcpPose(startCopy));
+    const Pose target = parsePose(options.toPose, tool.tcpPose(start));
     result = options.cartesian
                  ? planCartesian(group, tool, start, target, options.motion)
                  : planMotion(group, start, goalForPose(group, tool, start, target, options.motion),

@@ -230,7 +230,8 @@ TEST(World, ARobotCollidingAtHomeIsNamed) {
                             "    geometry: {box: {size: [0.1, 0.1, 2.0]}}\n"
                             "    pose: {position: [0, 0, 1.0]}\n"));
   EXPECT_NE(error.find("scene.yaml:"), std::string::npos) << error;
-  EXPECT_NE(error.find("robot 'twin' link 'torso' at home collides with object 'pillar'"), std::string::npos)
+  EXPECT_NE(error.find("robot 'twin' link 'torso' at home collides with object 'pillar'"),
+            std::string::npos)
       << error;
 }
 

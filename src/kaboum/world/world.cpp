@@ -549,12 +549,14 @@ std::optional<Collision> World::firstCollision(const GeometricState& state) cons
   return firstCollision(state, buffers);
 }
 
+std::string World::linkName(const Party& party) const {
+  return robots_[party.index].collision.model().links()[static_cast<std::size_t>(party.link)].name;
+}
+
 std::string World::describe(const Party& party) const {
   if (party.kind == Party::Kind::Object) return "object '" + scene_.name(party.index) + "'";
-  const WorldRobot& robot = robots_[party.index];
-  if (party.link < 0) return "robot '" + robot.name + "'";
-  return "robot '" + robot.name + "' link '" +
-         robot.collision.model().links()[static_cast<std::size_t>(party.link)].name + "'";
+  const std::string robot = "robot '" + robots_[party.index].name + "'";
+  return party.link < 0 ? robot : robot + " link '" + linkName(party) + "'";
 }
 
 std::string World::describe(const Collision& collision) const {
@@ -562,10 +564,7 @@ std::string World::describe(const Collision& collision) const {
   const Party& second = collision.second;
   if (first.kind == Party::Kind::Robot && second.kind == Party::Kind::Robot &&
       first.index == second.index && second.link >= 0) {
-    return describe(first) + " collides with its link '" +
-           robots_[second.index].collision.model().links()[static_cast<std::size_t>(second.link)]
-               .name +
-           "'";
+    return describe(first) + " collides with its link '" + linkName(second) + "'";
   }
   return describe(first) + " collides with " + describe(second);
 }

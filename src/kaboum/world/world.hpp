@@ -184,6 +184,8 @@ class World {
   [[nodiscard]] std::string describe(const Collision& collision) const;
 
  private:
+  // The URDF name of a robot party's link (party.link >= 0).
+  [[nodiscard]] std::string linkName(const Party& party) const;
   void checkState(const GeometricState& state) const;
   void validateInitialState();
 
