@@ -95,6 +95,10 @@ TEST(MotionCli, BadInputGivesOneLineAndExitCodeTwo) {
       {"--to home --to-pose 0,0,1", "give exactly one of --to and --to-pose"},
       {"--to home --cartesian", "--cartesian needs --to-pose"},
       {"--to-pose 0,0", "--to-pose: '0,0' is not x,y,z or x,y,z,roll,pitch,yaw"},
+      {"--to-pose 0.3,0.1,0.3 --tool gripper", "--tool: robot 'kr5' has no tool 'gripper'"},
+      {"--to-pose 3,0,0.3", "--to-pose: no IK solution reaches the pose"},
+      {"--to home --planner teleport",
+       "--planner: teleport not in {biest,est,prm,rrt,rrtconnect,rrtstar} (see --help)"},
       {"--from shoulder_yaw=0 --to home",
        scene + ": start: robot 'kr5' link 'wrist' collides with object 'pole'"},
       {"--to shoulder_pitch=3", scene + ": goal: shoulder_pitch of robot 'kr5' is 3, outside its "

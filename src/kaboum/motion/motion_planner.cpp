@@ -128,16 +128,19 @@ MotionResult planMotion(const MotionGroup& group, std::span<const double> start,
   MotionStatistics& statistics = result.statistics;
   // An end closer to an obstacle than the sweep ε (but free) halves ε for the whole query, down to
   // kSmallestSweepFraction of it: certification holds at any ε, a smaller one costs finer sweeps.
-  const double asked = sweepEpsilonOf(group, options);
-  double epsilon = asked;
+  if (const auto problem = configurationProblem(group, start, 0.0)) {
+    return query.finish(PlannerStatus::InvalidStart, "start: " + *problem);
+  }
+  if (const auto problem = configurationProblem(group, goal, 0.0)) {
+    return query.finish(PlannerStatus::InvalidGoal, "goal: " + *problem);
+  }
+  const double smallest = kSmallestSweepFraction * sweepEpsilonOf(group, options);
+  double epsilon = sweepEpsilonOf(group, options);
   for (;;) {
     const auto startProblem = configurationProblem(group, start, epsilon);
     const auto goalProblem = configurationProblem(group, goal, epsilon);
     if (!startProblem && !goalProblem) break;
-    const bool halve = epsilon > kSmallestSweepFraction * asked &&
-                       !configurationProblem(group, start, 0.0) &&
-                       !configurationProblem(group, goal, 0.0);
-    if (halve) {
+    if (epsilon > smallest) {
       epsilon *= 0.5;
     } else if (startProblem) {
       return query.finish(PlannerStatus::InvalidStart, "start: " + *startProblem);
