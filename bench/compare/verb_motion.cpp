@@ -97,7 +97,7 @@ double cpuSecondsSince(double startNanoseconds) {
 void verifyRun(const verify::ReferenceGeometry& geometry, std::size_t robot,
                const std::vector<std::vector<double>>& path, PlannerRun& run) {
   const verify::PathVerification verification =
-      verify::verifyPath(geometry, verify::ScenePath{{robot}, path, {}});
+      verify::verifyPath(geometry, verify::ScenePath{{robot}, path, {}, std::nullopt});
   run.collisionFree = verification.collisionFree();
   if (verification.clearance) run.clearance = verification.clearance->distance;
   if (!verification.collisions.empty()) {

@@ -315,7 +315,7 @@ objects:
   EXPECT_FALSE(result.statistics.straight);
   expectCertified(group, result);
   const verify::ReferenceGeometry reference(world);
-  EXPECT_TRUE(verify::verifyPath(reference, {{0}, result.path, {}}).collisionFree());
+  EXPECT_TRUE(verify::verifyPath(reference, {{0}, result.path, {}, std::nullopt}).collisionFree());
 
   ToolKinematics tool(world, 0, 0);
   std::vector<double> q = start;
@@ -347,7 +347,8 @@ TEST(MotionPlanner, RandomQueriesGiveCertifiedPathsOrNamedFailures) {
         ++solved;
         expectCertified(group, result);
         expectDenselyFree(group, result.path, 1 * kDegree);
-        EXPECT_TRUE(verify::verifyPath(reference, {{0}, result.path, {}}).collisionFree())
+        EXPECT_TRUE(
+            verify::verifyPath(reference, {{0}, result.path, {}, std::nullopt}).collisionFree())
             << "query " << query;
         break;
       case PlannerStatus::InvalidStart:

@@ -88,9 +88,7 @@ MotionResult planCartesian(const MotionGroup& group, ToolKinematics& tool,
   }
   MotionResult& result = query.result;
   MotionStatistics& statistics = result.statistics;
-  const double epsilon = sweepEpsilonOf(group, options);
-  statistics.sweepEpsilon = epsilon;
-  if (const auto problem = configurationProblem(group, start, epsilon)) {
+  if (const auto problem = configurationProblem(group, start, 0.0)) {
     return query.finish(PlannerStatus::InvalidStart, "start: " + *problem);
   }
   const Pose from = tool.tcpPose(start);
@@ -107,8 +105,11 @@ MotionResult planCartesian(const MotionGroup& group, ToolKinematics& tool,
       return query.finish(PlannerStatus::InvalidGoal, *failure);
     }
   }
-  WorldStateChecker states(group, epsilon, &statistics.checks);
-  SweptMotionValidator motions(group, epsilon, &statistics.checks);
+  const QueryEpsilon ends = sweepEpsilonForEnds(group, start, result.path.back(), options);
+  if (ends.status != PlannerStatus::Solved) return query.finish(ends.status, ends.problem);
+  statistics.sweepEpsilon = ends.epsilon;
+  WorldStateChecker states(group, ends.epsilon, &statistics.checks);
+  SweptMotionValidator motions(group, ends.epsilon, &statistics.checks);
   for (std::size_t i = 1; i < result.path.size(); ++i) {
     if (const auto collision = states.firstCollision(result.path[i])) {
       return query.finish(PlannerStatus::Unsolvable,

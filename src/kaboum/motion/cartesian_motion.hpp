@@ -21,10 +21,10 @@ struct CartesianOptions {
 
 // Moves the tool of `group` (whose one robot is tool.robot()) from its pose at `start` to
 // `target` (TCP in the world frame). Solved: the waypoints, each within limits and every segment
-// certified. InvalidStart: the start is outside the limits or collides. InvalidGoal: no IK along
-// the line, a configuration flip (a joint step above maxJointStep) or a deviation that refinement
-// does not bring under maxDeviation, naming where along the line. Unsolvable: the line collides,
-// naming what.
+// certified at sweepEpsilonForEnds of the line's ends. InvalidStart: the start is outside the
+// limits or collides. InvalidGoal: no IK along the line, a configuration flip (a joint step above
+// maxJointStep) or a deviation that refinement does not bring under maxDeviation, naming where
+// along the line. Unsolvable: the line collides, naming what.
 MotionResult planCartesian(const MotionGroup& group, ToolKinematics& tool,
                            std::span<const double> start, const Pose& target,
                            const MotionOptions& options = {},

@@ -117,6 +117,30 @@ double pathLength(const Waypoints& path) {
   return length;
 }
 
+QueryEpsilon sweepEpsilonForEnds(const MotionGroup& group, std::span<const double> start,
+                                 std::span<const double> goal, const MotionOptions& options) {
+  if (const auto problem = configurationProblem(group, start, 0.0)) {
+    return {0, PlannerStatus::InvalidStart, "start: " + *problem};
+  }
+  if (const auto problem = configurationProblem(group, goal, 0.0)) {
+    return {0, PlannerStatus::InvalidGoal, "goal: " + *problem};
+  }
+  const double smallest = kSmallestSweepFraction * sweepEpsilonOf(group, options);
+  double epsilon = sweepEpsilonOf(group, options);
+  for (;;) {
+    const auto startProblem = configurationProblem(group, start, epsilon);
+    const auto goalProblem = configurationProblem(group, goal, epsilon);
+    if (!startProblem && !goalProblem) return {epsilon, PlannerStatus::Solved, {}};
+    if (epsilon > smallest) {
+      epsilon *= 0.5;
+    } else if (startProblem) {
+      return {0, PlannerStatus::InvalidStart, "start: " + *startProblem};
+    } else {
+      return {0, PlannerStatus::InvalidGoal, "goal: " + *goalProblem};
+    }
+  }
+}
+
 MotionResult planMotion(const MotionGroup& group, std::span<const double> start,
                         std::span<const double> goal, const MotionOptions& options) {
   MotionQuery query;
@@ -126,28 +150,9 @@ MotionResult planMotion(const MotionGroup& group, std::span<const double> start,
   }
   MotionResult& result = query.result;
   MotionStatistics& statistics = result.statistics;
-  // An end closer to an obstacle than the sweep ε (but free) halves ε for the whole query, down to
-  // kSmallestSweepFraction of it: certification holds at any ε, a smaller one costs finer sweeps.
-  if (const auto problem = configurationProblem(group, start, 0.0)) {
-    return query.finish(PlannerStatus::InvalidStart, "start: " + *problem);
-  }
-  if (const auto problem = configurationProblem(group, goal, 0.0)) {
-    return query.finish(PlannerStatus::InvalidGoal, "goal: " + *problem);
-  }
-  const double smallest = kSmallestSweepFraction * sweepEpsilonOf(group, options);
-  double epsilon = sweepEpsilonOf(group, options);
-  for (;;) {
-    const auto startProblem = configurationProblem(group, start, epsilon);
-    const auto goalProblem = configurationProblem(group, goal, epsilon);
-    if (!startProblem && !goalProblem) break;
-    if (epsilon > smallest) {
-      epsilon *= 0.5;
-    } else if (startProblem) {
-      return query.finish(PlannerStatus::InvalidStart, "start: " + *startProblem);
-    } else {
-      return query.finish(PlannerStatus::InvalidGoal, "goal: " + *goalProblem);
-    }
-  }
+  const QueryEpsilon ends = sweepEpsilonForEnds(group, start, goal, options);
+  if (ends.status != PlannerStatus::Solved) return query.finish(ends.status, ends.problem);
+  const double epsilon = ends.epsilon;
   statistics.sweepEpsilon = epsilon;
   WorldStateChecker states(group, epsilon, &statistics.checks);
   SweptMotionValidator motions(group, epsilon, &statistics.checks);

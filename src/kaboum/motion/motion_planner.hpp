@@ -84,9 +84,8 @@ const std::vector<std::string>& motionPlannerNames();
 
 // Plans from `start` to `goal` (configurations of `group`). A start outside the joint limits or
 // colliding (anything in the context state with the group at `start`) gives InvalidStart, such a
-// goal InvalidGoal, with the message naming the joint or both parties. An end closer to an
-// obstacle than the sweep ε halves ε for the query (statistics.sweepEpsilon), down to 1/16 of it;
-// closer still is InvalidStart or InvalidGoal too; running out of time gives TimeLimit, the cancel
+// goal InvalidGoal, with the message naming the joint or both parties. The query certifies at
+// sweepEpsilonForEnds (statistics.sweepEpsilon); running out of time gives TimeLimit, the cancel
 // flag Cancelled. Throws std::invalid_argument for configurations of the wrong size or an unknown
 // planner name.
 MotionResult planMotion(const MotionGroup& group, std::span<const double> start,
@@ -94,6 +93,18 @@ MotionResult planMotion(const MotionGroup& group, std::span<const double> start,
 
 // The sweep ε of a query: the option's, or the scene's.
 double sweepEpsilonOf(const MotionGroup& group, const MotionOptions& options);
+
+// The sweep ε that a query between two ends certifies at: sweepEpsilonOf, halved while an end is
+// closer than it to an obstacle (an object resting on its support, a grasp), down to 1/16 of it —
+// certification holds at any ε, a smaller one costs finer sweeps. An end that collides, is outside
+// the joint limits or is closer still gives InvalidStart or InvalidGoal with the problem.
+struct QueryEpsilon {
+  double epsilon = 0;
+  PlannerStatus status = PlannerStatus::Solved;
+  std::string problem;  // "start: …" or "goal: …"
+};
+QueryEpsilon sweepEpsilonForEnds(const MotionGroup& group, std::span<const double> start,
+                                 std::span<const double> goal, const MotionOptions& options);
 
 // Why `group` cannot be at q — a joint outside its limits, a collision of anything in the context
 // with the group at q, or a moving robot closer than `clearance` to an object (2 × `clearance` to

@@ -63,11 +63,14 @@ Pose ToolKinematics::tcpPose(std::span<const double> q) {
          chain_->toolPose(chainQ_) * tcp_;
 }
 
-Pose ToolKinematics::tipTarget(const Pose& tcp, std::span<const double> q) {
+Pose ToolKinematics::chainBase(std::span<const double> q) {
   const RobotCollisionModel& robot = world_->robots()[robot_].collision;
   robot.model().linkPoses(q, linkPoses_);
-  return (robot.basePose() * linkPoses_[static_cast<std::size_t>(baseLink_)]).inverse() * tcp *
-         tcp_.inverse();
+  return robot.basePose() * linkPoses_[static_cast<std::size_t>(baseLink_)];
+}
+
+Pose ToolKinematics::tipTarget(const Pose& tcp, std::span<const double> q) {
+  return chainBase(q).inverse() * tcp * tcp_.inverse();
 }
 
 std::vector<double> ToolKinematics::withChainValues(std::span<const double> q,

@@ -39,11 +39,19 @@ class ToolKinematics {
   [[nodiscard]] std::vector<std::vector<double>> solutions(const Pose& tcp,
                                                            std::span<const double> near);
 
+  // The chain from the tool's base link to its link, for constraint problems over it (§5.2).
+  [[nodiscard]] const KinematicChain& chain() const { return *chain_; }
+  // The tool centre point in the tool link frame.
+  [[nodiscard]] const Pose& tcp() const { return tcp_; }
+  // The world pose of the chain's base link at robot configuration q (its base link may move).
+  [[nodiscard]] Pose chainBase(std::span<const double> q);
+  // The robot configuration q with the chain's joints set to `chainValues` (chain order).
+  [[nodiscard]] std::vector<double> withChainValues(std::span<const double> q,
+                                                    std::span<const double> chainValues) const;
+
  private:
   // The target of the chain's tip in its base frame, at configuration q (its base link may move).
   [[nodiscard]] Pose tipTarget(const Pose& tcp, std::span<const double> q);
-  [[nodiscard]] std::vector<double> withChainValues(std::span<const double> q,
-                                                    std::span<const double> chainValues) const;
 
   const World* world_;
   std::size_t robot_;

@@ -137,8 +137,24 @@ struct CheckedParty {
   Pose scenePose = Pose::Identity();  // a scene object's world pose
 };
 
+// What the robots hold: the moving robots' objects of the path, the others' of the context.
+std::vector<ResolvedHeld> heldObjects(const ScenePath& path) {
+  std::vector<ResolvedHeld> held = path.held;
+  if (!path.context) return held;
+  for (std::size_t r = 0; r < path.context->robots.size(); ++r) {
+    if (std::find(path.robots.begin(), path.robots.end(), r) != path.robots.end()) continue;
+    const RobotState& robot = path.context->robots[r];
+    for (std::size_t i = 0; i < robot.held.size(); ++i) {
+      held.push_back({r, robot.heldObjects[i], static_cast<std::size_t>(robot.held[i].link),
+                      robot.held[i].inLink});
+    }
+  }
+  return held;
+}
+
 std::vector<CheckedParty> partiesOf(const ReferenceGeometry& geometry, const ScenePath& path) {
   const World& world = geometry.world();
+  const std::vector<ResolvedHeld> allHeld = heldObjects(path);
   std::vector<CheckedParty> parties;
   for (std::size_t r = 0; r < world.robots().size(); ++r) {
     const WorldRobot& robot = world.robots()[r];
@@ -148,7 +164,7 @@ std::vector<CheckedParty> partiesOf(const ReferenceGeometry& geometry, const Sce
         parties.push_back({{robot.name, links[link].name, ""}, *body, r, link});
       }
     }
-    for (const ResolvedHeld& held : path.held) {
+    for (const ResolvedHeld& held : allHeld) {
       if (held.robot != r) continue;
       parties.push_back({{robot.name, links[held.link].name, world.scene().name(held.object)},
                          geometry.objectBody(held.object),
@@ -158,16 +174,16 @@ std::vector<CheckedParty> partiesOf(const ReferenceGeometry& geometry, const Sce
                          true});
     }
   }
-  const GeometricState initial = world.initialState();
+  const GeometricState state = path.context ? *path.context : world.initialState();
   for (std::size_t object = 0; object < world.scene().size(); ++object) {
-    if (std::any_of(path.held.begin(), path.held.end(),
+    if (std::any_of(allHeld.begin(), allHeld.end(),
                     [&](const ResolvedHeld& held) { return held.object == object; })) {
       continue;
     }
     CheckedParty party;
     party.name.object = world.scene().name(object);
     party.body = geometry.objectBody(object);
-    party.scenePose = world.scene().pose(object, initial.placements);
+    party.scenePose = world.scene().pose(object, state.placements);
     parties.push_back(std::move(party));
   }
   return parties;
@@ -355,11 +371,13 @@ PathVerification verifyPath(const ReferenceGeometry& geometry, const ScenePath& 
   const std::vector<std::pair<std::size_t, std::size_t>> pairs = checkedPairs(world, path, parties);
   const std::vector<RobotSlice> slices = slicesOf(world, path);
 
-  // Link poses of every robot; robots not in the path stay at home.
+  // Link poses of every robot; robots not in the path stay where the context has them.
   std::vector<std::vector<Pose>> linkPoses;
-  for (const WorldRobot& robot : world.robots()) {
+  for (std::size_t r = 0; r < world.robots().size(); ++r) {
+    const WorldRobot& robot = world.robots()[r];
     linkPoses.emplace_back(robot.collision.model().links().size());
-    robot.collision.model().linkPoses(robot.home, linkPoses.back());
+    robot.collision.model().linkPoses(
+        path.context ? path.context->robots[r].configuration : robot.home, linkPoses.back());
   }
   std::vector<Pose> worldPoses(parties.size());
 

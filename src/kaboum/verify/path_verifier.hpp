@@ -28,11 +28,14 @@ struct ResolvedHeld {
 };
 
 // A path file checked against a World (names, lengths, joint limits): the moving robots (World
-// robot indices, each waypoint their configurations concatenated in this order) and what is held.
+// robot indices, each waypoint their configurations concatenated in this order) and what they
+// hold; and the state it moves in: the configurations of the other robots and what they hold,
+// and where the objects are (`context`; absent: the World's initial state, robots at home).
 struct ScenePath {
   std::vector<std::size_t> robots;
   std::vector<std::vector<double>> waypoints;
   std::vector<ResolvedHeld> held;
+  std::optional<GeometricState> context;
 };
 
 // Checks `path` against `world`. Bad input throws InputError with one line naming `fileName` and

@@ -369,26 +369,31 @@ World::World(SceneDescription scene, const WorldOptions& options) : description_
     names_[lowerCase(objects[o].name)] = {NamedEntity::Kind::Object, o};
   }
 
-  // Movable objects start free, raised off what they rest on when touching is all that collides.
+  // Movable objects start free, raised off what they rest on when touching is all that collides,
+  // and further up to the resting gap (restingGap()), so that certified motions can leave them.
   initialPlacements_ = scene_.initialState();
   restingLift_.assign(objects.size(), 0.0);
+  const double gap = restingGap();
   for (std::size_t o = 0; o < objects.size(); ++o) {
     if (!objects[o].movable) continue;
     Pose& pose = initialPlacements_[scene_.slot(o)].pose;
+    const std::optional<std::size_t> near =
+        scene_.firstCollision(initialPlacements_, scene_.body(o), pose, gap, o);
+    if (!near) continue;
     const std::optional<std::size_t> hit =
         scene_.firstCollision(initialPlacements_, scene_.body(o), pose, 0.0, o);
-    if (!hit) continue;
     const double largestLift =
-        allowance(objectEpsilon_[o]) + allowance(objectEpsilon_[*hit]) + kFirstLift;
+        allowance(objectEpsilon_[o]) + allowance(objectEpsilon_[*near]) + 2 * gap + kFirstLift;
     const Pose written = pose;
     for (double lift = kFirstLift; lift <= largestLift && restingLift_[o] == 0; lift *= 2) {
       Pose raised = written;
       raised.translation().z() += lift;
-      if (!scene_.firstCollision(initialPlacements_, scene_.body(o), raised, 0.0, o)) {
+      if (!scene_.firstCollision(initialPlacements_, scene_.body(o), raised, gap, o)) {
         pose = raised;
         restingLift_[o] = lift;
       }
     }
+    if (!hit) continue;  // near but free: raised when that frees it, else left where it is
     if (restingLift_[o] == 0) {
       const double depth = verticalOverlap(scene_.body(o), written, scene_.body(*hit),
                                            scene_.pose(*hit, initialPlacements_));
@@ -458,6 +463,27 @@ void World::hold(GeometricState& state, std::size_t robot, int link, std::size_t
   placement.present = false;
   state.robots[robot].held.push_back(attachment);
   state.robots[robot].heldObjects.push_back(object);
+}
+
+Pose World::release(GeometricState& state, std::size_t robot, std::size_t object) const {
+  checkState(state);
+  RobotState& holder = state.robots.at(robot);
+  const auto it = std::find(holder.heldObjects.begin(), holder.heldObjects.end(), object);
+  if (it == holder.heldObjects.end()) {
+    throw std::invalid_argument("robot '" + robots_[robot].name + "' does not hold object '" +
+                                scene_.name(object) + "'");
+  }
+  const auto index = static_cast<std::size_t>(it - holder.heldObjects.begin());
+  const RobotCollisionModel& model = robots_[robot].collision;
+  std::vector<Pose> linkPoses(model.model().links().size());
+  model.model().linkPoses(holder.configuration, linkPoses);
+  const Attachment& attachment = holder.held[index];
+  const Pose pose =
+      model.basePose() * linkPoses[static_cast<std::size_t>(attachment.link)] * attachment.inLink;
+  holder.held.erase(holder.held.begin() + static_cast<std::ptrdiff_t>(index));
+  holder.heldObjects.erase(it);
+  state.placements[scene_.slot(object)] = Placement{pose, true};
+  return pose;
 }
 
 void World::checkState(const GeometricState& state) const {

@@ -119,10 +119,10 @@ struct QueryScratch {
 class World {
  public:
   // Builds the geometry of `scene`. Movable objects resting on another object (touching it, free
-  // once raised by at most the two bodies' bounding error) are raised until free, so that the
-  // initial state is collision-free as placements are (isOnSupportSurface). Throws InputError with
-  // one line naming the entry (SourceLocation::message) when two objects start in collision or a
-  // robot at home collides with an object or another robot.
+  // once raised by at most the two bodies' bounding error, or nearer to it than restingGap()) are
+  // raised until they are restingGap() clear of it, as placements are (isOnSupportSurface). Throws
+  // InputError with one line naming the entry (SourceLocation::message) when two objects start in
+  // collision or a robot at home collides with an object or another robot.
   explicit World(SceneDescription scene, const WorldOptions& options = {});
 
   [[nodiscard]] const SceneDescription& description() const { return description_; }
@@ -140,6 +140,11 @@ class World {
   [[nodiscard]] double preprocessingSeconds() const { return preprocessingSeconds_; }
   // How far a resting object was raised off its support at load time (by object id; 0 if not).
   [[nodiscard]] const std::vector<double>& restingLift() const { return restingLift_; }
+  // Metres: the clearance the World keeps between a resting object and its support — a quarter of
+  // the scene's sweep ε, so that the certified motions that lift it off or set it down can start
+  // and end there (motion::sweepEpsilonForEnds). Initial objects touching or nearer than this to
+  // what they rest on are raised to it; placements are made at it.
+  [[nodiscard]] double restingGap() const { return description_.settings.sweepEpsilon / 4; }
   // The bounding error of each object's pieces (by object id).
   [[nodiscard]] const std::vector<BodyEpsilon>& objectEpsilon() const { return objectEpsilon_; }
   // What the decomposition cache did while the World was built (all zero without one).
@@ -156,6 +161,10 @@ class World {
   // for a fixed object or one not placed in `state`.
   void hold(GeometricState& state, std::size_t robot, int link, std::size_t object,
             const Pose& objectInLink) const;
+  // Makes `robot` let go of `object` where it holds it: the object is placed at its pose at the
+  // robot's configuration in `state`. Returns that pose. Throws std::invalid_argument when the
+  // robot does not hold the object.
+  Pose release(GeometricState& state, std::size_t robot, std::size_t object) const;
 
   // The first collision in `state`, checked through the bounded predicates at distance 0 (never
   // missed; may be reported up to the bodies' bounding error apart): each robot in turn (with what

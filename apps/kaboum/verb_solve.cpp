@@ -1,0 +1,153 @@
+// `kaboum solve DOMAIN PROBLEM SCENE`: the integrated planner (thesis Chapter 6) — a plan that
+// branches on sensing, every action with its certified geometry, checked by the symbolic validator
+// and the independent path verifier; printed as a tree with statistics, or as the plan file.
+#include <fmt/format.h>
+
+#include <fstream>
+#include <iostream>
+#include <memory>
+
+#include "kaboum/core/error.hpp"
+#include "kaboum/symbolic/heuristic.hpp"
+#include "kaboum/tamp/plan_file.hpp"
+#include "scene_cli.hpp"
+#include "verb.hpp"
+
+namespace kaboum::cli {
+
+namespace {
+
+struct Options {
+  tamp::PlanSources files;
+  SceneLoadOptions load;
+  tamp::SolveOptions solve;
+  double motionTimeLimit = 2;
+  std::string planOut;
+  bool json = false;
+  bool quiet = false;
+};
+
+void printSummary(const tamp::SolveResult& result) {
+  const tamp::GeometricStatistics& geometric = result.geometric;
+  const symbolic::TreeMetrics metrics = symbolic::measure(result.plan);
+  std::cerr << "kaboum solve: " << toString(result.status);
+  if (result.status == PlannerStatus::Solved) {
+    std::cerr << fmt::format(", {} action(s), {} leaf/leaves", metrics.actions, metrics.leaves);
+  }
+  std::cerr << fmt::format(
+      "; {:.3f} s (symbolic {:.3f} s, geometric {:.3f} s: {} IK sample(s) {:.3f} s, {} motion "
+      "query(ies) {:.3f} s, {} state and {} motion check(s)); {} geometric state(s), {} "
+      "expanded\n",
+      result.seconds, result.symbolicSeconds, result.geometricSeconds, geometric.ikCalls,
+      geometric.ikSeconds, geometric.motionQueries, geometric.motionSeconds,
+      geometric.checks.stateChecks, geometric.checks.motionChecks, result.geometricStates,
+      result.search.expanded);
+  const tamp::PlanVerification& verification = result.verification;
+  if (result.status == PlannerStatus::Solved) {
+    std::cerr << fmt::format("verification: symbolic {}",
+                             verification.symbolic.valid ? "valid" : "INVALID");
+    if (verification.pathsChecked) {
+      std::cerr << fmt::format(
+          "; {} path(s), {} sample(s) on the original meshes, {} colliding, smallest clearance "
+          "{:.1f} mm ({:.2f} s)",
+          verification.paths, verification.samples, verification.collidingPaths,
+          1000 * verification.smallestClearance, verification.seconds);
+    }
+    std::cerr << "\n";
+  }
+  if (!result.message.empty()) std::cerr << "kaboum solve: " << result.message << "\n";
+  if (result.status != PlannerStatus::Solved && !geometric.lastFailure.empty()) {
+    std::cerr << "kaboum solve: last geometric failure: " << geometric.lastFailure << "\n";
+  }
+}
+
+int run(Options& options) {
+  options.solve.geometry.motion.timeLimit = options.motionTimeLimit;
+  options.solve.geometry.motion.seed = options.solve.geometry.seed;
+  const world::World world = loadWorld(options.files.scene, options.load);
+  tamp::Solver solver(world, symbolic::loadContingent(options.files.domain, options.files.problem),
+                      options.solve);
+  const tamp::SolveResult result = solver.solve();
+  const bool solved = result.status == PlannerStatus::Solved && result.verification.passed();
+  const nlohmann::json plan = tamp::planFileJson(solver, result, options.files);
+  if (solved && !options.planOut.empty()) {
+    std::ofstream out(options.planOut);
+    if (!out || !(out << plan.dump(1) << "\n")) {
+      throw InputError(locate(options.planOut, "cannot write the plan file"));
+    }
+  }
+  if (options.json) {
+    std::cout << plan.dump(2) << "\n";
+  } else if (result.status == PlannerStatus::Solved) {
+    std::cout << symbolic::formatPlanTree(solver.task(), result.plan);
+  }
+  if (!options.quiet || !solved) printSummary(result);
+  return solved ? 0 : 1;
+}
+
+VerbRunner setup(CLI::App& command) {
+  auto options = std::make_shared<Options>();
+  command.add_option("domain", options->files.domain, "PDDL domain with geometric attachments")
+      ->required();
+  command.add_option("problem", options->files.problem, "PDDL problem")->required();
+  command.add_option("scene", options->files.scene, "Scene file (docs/scene-format.md)")
+      ->required();
+  command
+      .add_option("--search", options->solve.search.mode,
+                  "Search between branch points: gbfs (greedy best-first), astar, bfs, dfs")
+      ->check(CLI::IsMember(symbolic::contingentSearchModes()))
+      ->capture_default_str();
+  command
+      .add_option("--heuristic", options->solve.search.heuristic,
+                  "Heuristic of gbfs and astar, evaluated in every world (maximum)")
+      ->check(CLI::IsMember(symbolic::heuristicNames()))
+      ->capture_default_str();
+  command.add_option("--time-limit", options->solve.search.limits.seconds, "Search time limit (s)")
+      ->check(CLI::PositiveNumber);
+  command
+      .add_option("--node-limit", options->solve.search.limits.expansions,
+                  "Maximum number of expanded knowledge states")
+      ->check(CLI::PositiveNumber);
+  command
+      .add_option("--max-worlds", options->solve.maxWorlds,
+                  "Maximum number of possible initial worlds")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command
+      .add_option("--seed", options->solve.geometry.seed,
+                  "Seed of the geometric sampling (grasps, placements, configurations, paths)")
+      ->capture_default_str();
+  command
+      .add_option("--motion-time-limit", options->motionTimeLimit,
+                  "Time limit of each motion query (s)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command
+      .add_option("--planner", options->solve.geometry.motion.planner,
+                  "Motion planner when a straight segment collides")
+      ->check(CLI::IsMember(motion::motionPlannerNames()))
+      ->capture_default_str();
+  command
+      .add_option("--grasp-samples", options->solve.geometry.graspSamples,
+                  "Grasps tried per pickUp call")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command.add_flag(
+      "--no-verify", [options](std::int64_t) { options->solve.verify = false; },
+      "Skip replaying the paths on the original meshes (the symbolic validation "
+      "still runs)");
+  addSceneLoadOptions(command, options->load);
+  command.add_option("--plan-out", options->planOut, "Write the plan file (JSON) to FILE");
+  command.add_flag("--json", options->json, "Print the plan file (JSON) on stdout");
+  command.add_flag("--quiet", options->quiet, "No summary on stderr");
+  return [options] { return run(*options); };
+}
+
+const VerbRegistration registration{
+    "solve",
+    "Solve a task-and-motion problem: a verified plan with certified paths (exit 0 solved, 1 "
+    "not)",
+    setup};
+
+}  // namespace
+}  // namespace kaboum::cli

@@ -1,0 +1,372 @@
+#include "kaboum/tamp/geometric_attachments.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include "kaboum/core/error.hpp"
+#include "kaboum/core/text.hpp"
+#include "kaboum/kinematics/random_configuration.hpp"
+#include "kaboum/motion/cartesian_motion.hpp"
+
+namespace kaboum::tamp {
+
+using symbolic::AttachmentArgs;
+
+namespace {
+
+class Stopwatch {
+ public:
+  [[nodiscard]] double seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - begin_).count();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point begin_ = std::chrono::steady_clock::now();
+};
+
+void mix(std::uint64_t& seed, std::uint64_t value) {
+  seed ^= value + 0x9e3779b97f4a7c15ULL + (seed << 6) + (seed >> 2);
+}
+
+Pose translated(const Vec3& offset, const Pose& pose) {
+  Pose moved = pose;
+  moved.translation() += offset;
+  return moved;
+}
+
+}  // namespace
+
+const char* toString(GeometricStep::Kind kind) {
+  switch (kind) {
+    case GeometricStep::Kind::Transit:
+      return "transit";
+    case GeometricStep::Kind::Transfer:
+      return "transfer";
+    case GeometricStep::Kind::Approach:
+      return "approach";
+    case GeometricStep::Kind::Retreat:
+      return "retreat";
+    case GeometricStep::Kind::Grasp:
+      return "grasp";
+    case GeometricStep::Kind::Release:
+      return "release";
+  }
+  return "?";
+}
+
+GeometricAttachments::GeometricAttachments(const World& world, TampOptions options)
+    : world_(&world), options_(std::move(options)) {
+  map_.intern(world.initialState());
+  const SceneDescription& scene = world.description();
+  for (std::size_t r = 0; r < scene.robots.size(); ++r) {
+    if (!scene.robots[r].tools.empty()) arms_[lowerCase(scene.robots[r].name)] = Arm{r, 0};
+    for (std::size_t t = 0; t < scene.robots[r].tools.size(); ++t) {
+      arms_.try_emplace(lowerCase(scene.robots[r].tools[t].name), Arm{r, t});
+    }
+  }
+}
+
+GeometricAttachments::~GeometricAttachments() = default;
+
+namespace {
+
+constexpr std::string_view kNotAnArm = "not a robot with a tool nor a tool of the scene";
+constexpr std::string_view kNotAMovableObject = "not a movable object of the scene";
+
+// Each procedure and its number of arguments (robots, objects, locations by name).
+const std::vector<std::pair<std::string, std::size_t>>& signatures() {
+  static const std::vector<std::pair<std::string, std::size_t>> table{
+      {"move", 1}, {"pickUp", 2}, {"isColliding", 0}, {"isReachable", 2}};
+  return table;
+}
+
+}  // namespace
+
+const std::vector<std::string>& GeometricAttachments::procedureNames() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> list;
+    for (const auto& entry : signatures()) list.push_back(entry.first);
+    return list;
+  }();
+  return names;
+}
+
+bool GeometricAttachments::isGeometricEffect(const std::string& name) {
+  return name == "move" || name == "pickUp";
+}
+
+std::size_t GeometricAttachments::arity(const std::string& name) {
+  for (const auto& [procedure, count] : signatures()) {
+    if (procedure == name) return count;
+  }
+  throw std::invalid_argument("no geometric attachment '" + name + "'");
+}
+
+bool GeometricAttachments::namesSceneEntity(const std::string& name) const {
+  return arms_.contains(lowerCase(name)) || world_->find(name).has_value();
+}
+
+void GeometricAttachments::registerProcedures(symbolic::ProcedureRegistry& registry) {
+  registry.addApplicator("move", [this](const AttachmentArgs& args, std::span<double> writes) {
+    return move(args, writes);
+  });
+  registry.addApplicator("pickUp", [this](const AttachmentArgs& args, std::span<double> writes) {
+    return pickUp(args, writes);
+  });
+  registry.addChecker("isColliding",
+                      [this](const AttachmentArgs& args) { return isColliding(args); });
+  registry.addChecker("isReachable",
+                      [this](const AttachmentArgs& args) { return isReachable(args); });
+}
+
+const ActionGeometry* GeometricAttachments::transition(std::size_t from, std::size_t to) const {
+  const auto it = transitions_.find({from, to});
+  return it == transitions_.end() ? nullptr : &it->second;
+}
+
+const GeometricState& GeometricAttachments::stateOf(const AttachmentArgs& args,
+                                                    const std::string& procedure) const {
+  const double id = args.reads.empty() ? -1 : args.reads[0];
+  if (!(id >= 0) || id != std::floor(id) || id >= static_cast<double>(map_.size())) {
+    throw InputError("attachment '" + procedure +
+                     "' must read the geometric state's fluent first (:reads ((geometry) …)), "
+                     "but read " +
+                     (args.reads.empty() ? std::string("nothing") : std::to_string(id)));
+  }
+  return map_.state(static_cast<std::size_t>(id));
+}
+
+std::optional<GeometricAttachments::Arm> GeometricAttachments::arm(const AttachmentArgs& args,
+                                                                   std::size_t index) const {
+  const auto it = arms_.find(lowerCase(std::string(args.name(index))));
+  if (it == arms_.end()) return std::nullopt;
+  return it->second;
+}
+
+std::optional<std::size_t> GeometricAttachments::object(const AttachmentArgs& args,
+                                                        std::size_t index) const {
+  const std::optional<NamedEntity> entity = world_->find(std::string(args.name(index)));
+  if (!entity || entity->kind != NamedEntity::Kind::Object ||
+      !world_->scene().movable(entity->index)) {
+    return std::nullopt;
+  }
+  return entity->index;
+}
+
+std::optional<std::size_t> GeometricAttachments::location(const AttachmentArgs& args,
+                                                          std::size_t index) const {
+  const std::optional<NamedEntity> entity = world_->find(std::string(args.name(index)));
+  if (!entity || entity->kind != NamedEntity::Kind::Location) return std::nullopt;
+  return entity->index;
+}
+
+motion::ToolKinematics& GeometricAttachments::tool(const Arm& arm) {
+  auto& slot = tools_[{arm.robot, arm.tool}];
+  if (!slot) {
+    slot = std::make_unique<motion::ToolKinematics>(*world_, arm.robot, arm.tool, options_.seed);
+  }
+  return *slot;
+}
+
+std::mt19937_64 GeometricAttachments::generator(const std::string& procedure,
+                                                const AttachmentArgs& args) const {
+  std::uint64_t seed = options_.seed;
+  mix(seed, std::hash<std::string>{}(procedure));
+  for (const auto object : args.objects) mix(seed, static_cast<std::uint64_t>(object));
+  for (const double value : args.reads) mix(seed, std::hash<double>{}(value));
+  return std::mt19937_64(seed);
+}
+
+motion::MotionResult GeometricAttachments::plan(const GeometricState& context, const Arm& arm,
+                                                std::span<const double> goal) {
+  const motion::MotionGroup group(*world_, context, {arm.robot});
+  motion::MotionResult result =
+      motion::planMotion(group, context.robots[arm.robot].configuration, goal, options_.motion);
+  ++statistics_.motionQueries;
+  statistics_.motionSeconds += result.statistics.totalSeconds;
+  statistics_.checks.stateChecks += result.statistics.checks.stateChecks;
+  statistics_.checks.stateSeconds += result.statistics.checks.stateSeconds;
+  statistics_.checks.motionChecks += result.statistics.checks.motionChecks;
+  statistics_.checks.motionSeconds += result.statistics.checks.motionSeconds;
+  return result;
+}
+
+motion::MotionResult GeometricAttachments::line(const GeometricState& context, const Arm& arm,
+                                                const Pose& target) {
+  const motion::MotionGroup group(*world_, context, {arm.robot});
+  const Stopwatch clock;
+  motion::MotionResult result = motion::planCartesian(
+      group, tool(arm), context.robots[arm.robot].configuration, target, options_.motion);
+  ++statistics_.motionQueries;
+  statistics_.motionSeconds += clock.seconds();
+  statistics_.checks.stateChecks += result.statistics.checks.stateChecks;
+  statistics_.checks.stateSeconds += result.statistics.checks.stateSeconds;
+  statistics_.checks.motionChecks += result.statistics.checks.motionChecks;
+  statistics_.checks.motionSeconds += result.statistics.checks.motionSeconds;
+  return result;
+}
+
+bool GeometricAttachments::finish(ActionGeometry geometry, const GeometricState& reached,
+                                  std::span<double> writes) {
+  geometry.to = map_.intern(reached);
+  writes[0] = static_cast<double>(geometry.to);
+  transitions_.try_emplace({geometry.from, geometry.to}, std::move(geometry));
+  return true;
+}
+
+bool GeometricAttachments::fail(const std::string& procedure, const AttachmentArgs& args,
+                                std::string_view reason) {
+  ++statistics_.failures;
+  std::string call = procedure + "(";
+  for (std::size_t i = 0; i < args.objects.size(); ++i) {
+    call += (i ? ", " : "") + std::string(args.name(i));
+  }
+  statistics_.lastFailure = call + "): " + std::string(reason);
+  return false;
+}
+
+// move(robot): a random configuration within the joint limits reached by a certified path.
+bool GeometricAttachments::move(const AttachmentArgs& args, std::span<double> writes) {
+  ++statistics_.calls;
+  const GeometricState& state = stateOf(args, "move");
+  const std::optional<Arm> found = arm(args, 0);
+  if (!found) return fail("move", args, kNotAnArm);
+  const Arm moving = *found;
+  std::mt19937_64 rng = generator("move", args);
+  const RobotModel& model = world_->robots()[moving.robot].collision.model();
+  const bool holding = !state.robots[moving.robot].heldObjects.empty();
+  std::string reason = "no samples";
+  for (int sample = 0; sample < options_.moveSamples; ++sample) {
+    const std::vector<double> goal = randomConfiguration(model, rng);
+    options_.motion.seed = rng();
+    motion::MotionResult path = plan(state, moving, goal);
+    if (path.status != PlannerStatus::Solved) {
+      reason = "path: " + path.message;
+      continue;
+    }
+    GeometricState reached = state;
+    reached.robots[moving.robot].configuration = path.path.back();
+    ActionGeometry geometry{"move", {std::string(args.name(0))}, *map_.find(state), 0, {}};
+    geometry.steps.push_back(
+        {holding ? GeometricStep::Kind::Transfer : GeometricStep::Kind::Transit, moving.robot,
+         moving.tool, std::move(path.path), 0, Pose::Identity()});
+    return finish(std::move(geometry), reached, writes);
+  }
+  return fail("move", args, reason);
+}
+
+int GeometricAttachments::toolLink(const Arm& arm) const {
+  return world_->robots()[arm.robot]
+      .collision.model()
+      .findLink(world_->description().robots[arm.robot].tools[arm.tool].link)
+      .value();
+}
+
+// One grasp sample of pickUp: IK for the grasp and its pre-grasp (approachDistance back along the
+// tool's z axis), a certified transit path to the pre-grasp, the Cartesian approach, the grasp,
+// and a Cartesian lift of liftHeight holding the object. Empty when it works, else why not.
+std::string GeometricAttachments::tryGrasp(const GeometricState& state, const Arm& arm,
+                                           std::size_t object, std::mt19937_64& rng,
+                                           std::vector<GeometricStep>& steps,
+                                           GeometricState& reached) {
+  motion::ToolKinematics& kinematics = tool(arm);
+  GraspSampler sampler(*world_, kinematics);
+  const Pose objectPose = state.placements[world_->scene().slot(object)].pose;
+  const Stopwatch ik;
+  const std::optional<GraspCandidate> grasp =
+      sampler.sample(object, objectPose, state.robots[arm.robot].configuration, rng);
+  std::optional<std::vector<double>> preGrasp;
+  const Pose tcpAtGrasp = objectPose * (grasp ? grasp->tcpInObject : Pose::Identity());
+  if (grasp) {
+    const Pose tcpBefore = tcpAtGrasp * Eigen::Translation3d(0, 0, -options_.approachDistance);
+    preGrasp = kinematics.solveNear(tcpBefore, grasp->configuration);
+  }
+  ++statistics_.ikCalls;
+  statistics_.ikSeconds += ik.seconds();
+  if (!grasp) return "no IK solution for the grasp sample";
+  if (!preGrasp) return "no IK solution for the pre-grasp";
+  options_.motion.seed = rng();
+  motion::MotionResult transit = plan(state, arm, *preGrasp);
+  if (transit.status != PlannerStatus::Solved) return "transit: " + transit.message;
+  GeometricState atGrasp = state;
+  atGrasp.robots[arm.robot].configuration = *preGrasp;
+  motion::MotionResult approach = line(atGrasp, arm, tcpAtGrasp);
+  if (approach.status != PlannerStatus::Solved) return "approach: " + approach.message;
+  atGrasp.robots[arm.robot].configuration = approach.path.back();
+  const Pose tcp = kinematics.tcpPose(approach.path.back());
+  const Pose objectInLink = (tcp * kinematics.tcp().inverse()).inverse() * objectPose;
+  world_->hold(atGrasp, arm.robot, toolLink(arm), object, objectInLink);
+  options_.motion.seed = rng();
+  motion::MotionResult lift = line(atGrasp, arm, translated(Vec3(0, 0, options_.liftHeight), tcp));
+  if (lift.status != PlannerStatus::Solved) return "lift: " + lift.message;
+  reached = std::move(atGrasp);
+  reached.robots[arm.robot].configuration = lift.path.back();
+  steps.push_back({GeometricStep::Kind::Transit, arm.robot, arm.tool, std::move(transit.path), 0,
+                   Pose::Identity()});
+  steps.push_back({GeometricStep::Kind::Approach, arm.robot, arm.tool, std::move(approach.path), 0,
+                   Pose::Identity()});
+  steps.push_back({GeometricStep::Kind::Grasp, arm.robot, arm.tool, {}, object, objectInLink});
+  steps.push_back({GeometricStep::Kind::Retreat, arm.robot, arm.tool, std::move(lift.path), 0,
+                   Pose::Identity()});
+  return {};
+}
+
+// pickUp(robot, object): up to graspSamples grasp samples (tryGrasp); the first that works.
+bool GeometricAttachments::pickUp(const AttachmentArgs& args, std::span<double> writes) {
+  ++statistics_.calls;
+  const GeometricState& state = stateOf(args, "pickUp");
+  const std::optional<Arm> picking = arm(args, 0);
+  const std::optional<std::size_t> target = object(args, 1);
+  if (!picking) return fail("pickUp", args, kNotAnArm);
+  if (!target) return fail("pickUp", args, kNotAMovableObject);
+  if (!state.placements[world_->scene().slot(*target)].present) {
+    return fail("pickUp", args, "the object is held");
+  }
+  if (!state.robots[picking->robot].heldObjects.empty()) {
+    return fail("pickUp", args, "the robot holds an object");
+  }
+  std::mt19937_64 rng = generator("pickUp", args);
+  std::string reason = "no samples";
+  for (int sample = 0; sample < options_.graspSamples; ++sample) {
+    ActionGeometry geometry{
+        "pickUp", {std::string(args.name(0)), std::string(args.name(1))}, *map_.find(state), 0, {}};
+    GeometricState reached;
+    reason = tryGrasp(state, *picking, *target, rng, geometry.steps, reached);
+    if (reason.empty()) return finish(std::move(geometry), reached, writes);
+  }
+  return fail("pickUp", args, reason);
+}
+
+// isReachable(robot, object): some grasp of the object at its pose has an IK solution at which
+// the robot collides with nothing.
+bool GeometricAttachments::isReachable(const AttachmentArgs& args) {
+  ++statistics_.calls;
+  const GeometricState& state = stateOf(args, "isReachable");
+  const std::optional<Arm> reaching = arm(args, 0);
+  const std::optional<std::size_t> target = object(args, 1);
+  if (!reaching || !target) return false;
+  const Placement& placement = state.placements[world_->scene().slot(*target)];
+  std::mt19937_64 rng = generator("isReachable", args);
+  GraspSampler sampler(*world_, tool(*reaching));
+  bool reachable = false;
+  const motion::MotionGroup group(*world_, state, {reaching->robot});
+  for (int sample = 0; placement.present && sample < options_.graspSamples && !reachable;
+       ++sample) {
+    const Stopwatch ik;
+    const std::optional<GraspCandidate> grasp =
+        sampler.sample(*target, placement.pose, state.robots[reaching->robot].configuration, rng);
+    ++statistics_.ikCalls;
+    statistics_.ikSeconds += ik.seconds();
+    reachable = grasp && !motion::configurationProblem(group, grasp->configuration, 0);
+  }
+  return reachable;
+}
+
+// isColliding(): whether the state has a collision (the bounded predicates at distance 0).
+bool GeometricAttachments::isColliding(const AttachmentArgs& args) {
+  ++statistics_.calls;
+  const bool colliding = world_->firstCollision(stateOf(args, "isColliding")).has_value();
+  return colliding;
+}
+
+}  // namespace kaboum::tamp

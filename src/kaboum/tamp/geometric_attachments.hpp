@@ -1,0 +1,159 @@
+// The standard geometric attachments of the integrated planner (thesis §6.1.2, "Robotics
+// components at planning time"; seed 004 §II): procedures a domain names in its `:modules`, each
+// the geometric precondition and effect of a symbolic action on the geometric state whose
+// identifier (the symbolic–geometric map, Definition 5) the planner holds in a numeric fluent.
+// An effect returns the identifier of the state it leads to and records the certified motions
+// that get there; it fails (the action is inapplicable) when no sample of it works. Reference:
+// docs/tamp.md.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <random>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "kaboum/motion/motion_planner.hpp"
+#include "kaboum/motion/tool_kinematics.hpp"
+#include "kaboum/symbolic/attachments.hpp"
+#include "kaboum/tamp/grasp_sampler.hpp"
+#include "kaboum/tamp/state_map.hpp"
+
+namespace kaboum::tamp {
+
+struct TampOptions {
+  // Every motion query (transit, transfer, approach, retreat): planner, time limit, seed.
+  motion::MotionOptions motion;
+  int graspSamples = 16;  // grasps tried per pickUp call
+  int moveSamples = 8;    // random configurations tried per move call
+  // Metres: the pre-grasp pose is this far back along the tool's z axis (its approach axis) from
+  // the grasp, and the hand backs off as far after a release.
+  double approachDistance = 0.05;
+  // Metres: an object is lifted this far (world z) after a grasp, and lowered as far to a
+  // placement.
+  double liftHeight = 0.05;
+  std::uint64_t seed = 1;  // with each call's state and arguments, seeds its sampling
+};
+
+// One step of an action's geometry, in execution order: a certified joint-space motion of one
+// robot (waypoints of its whole configuration), or a gripper event.
+struct GeometricStep {
+  enum class Kind { Transit, Transfer, Approach, Retreat, Grasp, Release };
+  Kind kind = Kind::Transit;
+  std::size_t robot = 0;
+  std::size_t tool = 0;
+  motion::Waypoints path;  // motions only
+  std::size_t object = 0;  // Grasp, Release: the scene object
+  // Grasp: the object frame in the tool link frame; Release: the object's pose in the world.
+  Pose pose = Pose::Identity();
+};
+
+const char* toString(GeometricStep::Kind kind);
+
+// The geometry of one effect: from geometric state `from` to `to` (identifiers of the map).
+struct ActionGeometry {
+  std::string procedure;
+  std::vector<std::string> arguments;
+  std::size_t from = 0;
+  std::size_t to = 0;
+  std::vector<GeometricStep> steps;
+};
+
+// Where the geometric time went (Table 6.7's rows).
+struct GeometricStatistics {
+  std::size_t calls = 0;  // procedure calls (the attachment memo answers repeats)
+  std::size_t failures = 0;
+  std::size_t ikCalls = 0;  // grasp and pose IK samples
+  double ikSeconds = 0;
+  std::size_t motionQueries = 0;  // planMotion and planCartesian queries
+  double motionSeconds = 0;       // in those queries, their checks included
+  motion::CheckStatistics checks;
+  // The last failed call and why its last sample failed: "pickUp(kr5, block): approach: …".
+  std::string lastFailure;
+};
+
+class GeometricAttachments {
+ public:
+  // The effects and checkers act on `world`, which must outlive this object. The map starts with
+  // the world's initial state as identifier 0.
+  GeometricAttachments(const World& world, TampOptions options = {});
+  ~GeometricAttachments();
+  GeometricAttachments(const GeometricAttachments&) = delete;
+  GeometricAttachments& operator=(const GeometricAttachments&) = delete;
+
+  // Registers every procedure under its name (procedureNames()).
+  void registerProcedures(symbolic::ProcedureRegistry& registry);
+  // Effects: move(robot), pickUp(robot, object); checkers:
+  // isColliding(), isReachable(robot, object). A robot argument names a scene robot (its first
+  // tool) or a tool.
+  static const std::vector<std::string>& procedureNames();
+  // Whether procedure `name` is an effect that writes a geometric state identifier.
+  static bool isGeometricEffect(const std::string& name);
+  // The number of arguments procedure `name` takes.
+  static std::size_t arity(const std::string& name);
+  // Whether `name` names a robot, tool, object or location of the scene. An argument of the wrong
+  // kind (a robot where an object is expected, as PDDL's root type `object` allows) makes the call
+  // fail, with the reason in statistics().lastFailure.
+  [[nodiscard]] bool namesSceneEntity(const std::string& name) const;
+
+  [[nodiscard]] const World& world() const { return *world_; }
+  [[nodiscard]] const GeometricStateMap& map() const { return map_; }
+  [[nodiscard]] const TampOptions& options() const { return options_; }
+  // The recorded geometry of an effect from state `from` to state `to`, if one was applied.
+  [[nodiscard]] const ActionGeometry* transition(std::size_t from, std::size_t to) const;
+  [[nodiscard]] const GeometricStatistics& statistics() const { return statistics_; }
+
+ private:
+  struct Arm {
+    std::size_t robot = 0;
+    std::size_t tool = 0;
+  };
+
+  bool move(const symbolic::AttachmentArgs& args, std::span<double> writes);
+  bool pickUp(const symbolic::AttachmentArgs& args, std::span<double> writes);
+  bool isReachable(const symbolic::AttachmentArgs& args);
+  bool isColliding(const symbolic::AttachmentArgs& args);
+
+  // The geometric state of the call's first read value; throws InputError for a value that is no
+  // identifier.
+  const GeometricState& stateOf(const symbolic::AttachmentArgs& args,
+                                const std::string& procedure) const;
+  // The arguments as scene entities of the kinds the procedures take, nullopt for another kind.
+  [[nodiscard]] std::optional<Arm> arm(const symbolic::AttachmentArgs& args,
+                                       std::size_t index) const;
+  [[nodiscard]] std::optional<std::size_t> object(const symbolic::AttachmentArgs& args,
+                                                  std::size_t index) const;
+  [[nodiscard]] std::optional<std::size_t> location(const symbolic::AttachmentArgs& args,
+                                                    std::size_t index) const;
+  motion::ToolKinematics& tool(const Arm& arm);
+  // The call's generator: the options' seed, the procedure, its arguments and read values.
+  std::mt19937_64 generator(const std::string& procedure,
+                            const symbolic::AttachmentArgs& args) const;
+  motion::MotionResult plan(const GeometricState& context, const Arm& arm,
+                            std::span<const double> goal);
+  motion::MotionResult line(const GeometricState& context, const Arm& arm, const Pose& target);
+  // The link a tool is on.
+  [[nodiscard]] int toolLink(const Arm& arm) const;
+  // One grasp sample of pickUp: on success an empty string, the steps, and the state reached.
+  std::string tryGrasp(const GeometricState& state, const Arm& arm, std::size_t object,
+                       std::mt19937_64& rng, std::vector<GeometricStep>& steps,
+                       GeometricState& reached);
+  // Records the geometry and writes the new state's identifier.
+  bool finish(ActionGeometry geometry, const GeometricState& reached, std::span<double> writes);
+  // Counts a failed call of `procedure` and keeps `reason` as the last failure.
+  bool fail(const std::string& procedure, const symbolic::AttachmentArgs& args,
+            std::string_view reason);
+
+  const World* world_;
+  TampOptions options_;
+  GeometricStateMap map_;
+  std::map<std::pair<std::size_t, std::size_t>, ActionGeometry> transitions_;
+  std::map<std::pair<std::size_t, std::size_t>, std::unique_ptr<motion::ToolKinematics>> tools_;
+  std::unordered_map<std::string, Arm> arms_;  // lower-case robot and tool names
+  GeometricStatistics statistics_;
+};
+
+}  // namespace kaboum::tamp

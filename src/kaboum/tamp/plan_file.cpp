@@ -1,0 +1,173 @@
+#include "kaboum/tamp/plan_file.hpp"
+
+#include <cmath>
+
+#include "kaboum/io/json_kinematics.hpp"
+
+namespace kaboum::tamp {
+
+using namespace kaboum::symbolic;
+
+namespace {
+
+nlohmann::json robotsJson(const World& world) {
+  nlohmann::json robots = nlohmann::json::array();
+  for (std::size_t r = 0; r < world.robots().size(); ++r) {
+    nlohmann::json joints = nlohmann::json::array();
+    for (const JointSpec& joint : world.description().robots[r].joints)
+      joints.push_back(joint.name);
+    nlohmann::json tools = nlohmann::json::array();
+    for (const ToolSpec& tool : world.description().robots[r].tools) tools.push_back(tool.name);
+    robots.push_back({{"name", world.robots()[r].name},
+                      {"urdf", world.description().robots[r].urdf},
+                      {"joints", joints},
+                      {"tools", tools}});
+  }
+  return robots;
+}
+
+nlohmann::json stateJson(const World& world, const GeometricState& state) {
+  nlohmann::json robots = nlohmann::json::object();
+  for (std::size_t r = 0; r < world.robots().size(); ++r) {
+    robots[world.robots()[r].name] = state.robots[r].configuration;
+  }
+  nlohmann::json objects = nlohmann::json::object();
+  for (std::size_t o = 0; o < world.scene().size(); ++o) {
+    const bool movable = world.scene().movable(o);
+    if (movable && !state.placements[world.scene().slot(o)].present) continue;
+    objects[world.scene().name(o)] = io::toJson(world.scene().pose(o, state.placements));
+  }
+  return {{"robots", robots}, {"objects", objects}};
+}
+
+nlohmann::json stepJson(const World& world, const GeometricStep& step) {
+  const auto& spec = world.description().robots[step.robot];
+  nlohmann::json json = {{"kind", toString(step.kind)},
+                         {"robot", spec.name},
+                         {"tool", spec.tools.empty() ? "" : spec.tools[step.tool].name}};
+  switch (step.kind) {
+    case GeometricStep::Kind::Grasp:
+      json["object"] = world.scene().name(step.object);
+      json["link"] = spec.tools[step.tool].link;
+      json["object_in_link"] = io::toJson(step.pose);
+      break;
+    case GeometricStep::Kind::Release:
+      json["object"] = world.scene().name(step.object);
+      json["object_pose"] = io::toJson(step.pose);
+      break;
+    default:
+      json["waypoints"] = step.path;
+      break;
+  }
+  return json;
+}
+
+nlohmann::json nodeJson(Solver& solver, const SolveResult& result, std::size_t id) {
+  const PlanTree::Node& node = result.plan.nodes[id];
+  switch (node.kind) {
+    case PlanTree::Node::Kind::Goal:
+      return {{"id", id}, {"kind", "goal"}};
+    case PlanTree::Node::Kind::Branch:
+      return {{"id", id},
+              {"kind", "branch"},
+              {"test", branchTest(solver.task(), node)},
+              {"on_true", node.next},
+              {"on_false", node.onFalse}};
+    case PlanTree::Node::Kind::Action:
+      break;
+  }
+  nlohmann::json geometry = nlohmann::json::array();
+  for (const ActionGeometry& action : result.geometry[id]) {
+    nlohmann::json steps = nlohmann::json::array();
+    for (const GeometricStep& step : action.steps) steps.push_back(stepJson(solver.world(), step));
+    geometry.push_back({{"procedure", action.procedure},
+                        {"arguments", action.arguments},
+                        {"from_state", action.from},
+                        {"to_state", action.to},
+                        {"steps", steps}});
+  }
+  return {{"id", id},
+          {"kind", "action"},
+          {"action",
+           "(" + solver.task().task().operators[static_cast<std::size_t>(node.op)].name + ")"},
+          {"next", node.next},
+          {"geometry", geometry}};
+}
+
+nlohmann::json finiteOrNull(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+}  // namespace
+
+nlohmann::json statisticsJson(const SolveResult& result) {
+  const GeometricStatistics& geometric = result.geometric;
+  std::size_t waypoints = 0;
+  std::size_t actions = 0;
+  for (const auto& node : result.geometry) {
+    for (const ActionGeometry& action : node) {
+      for (const GeometricStep& step : action.steps) waypoints += step.path.size();
+    }
+  }
+  for (const PlanTree::Node& node : result.plan.nodes) {
+    if (node.kind == PlanTree::Node::Kind::Action) ++actions;
+  }
+  nlohmann::json modules = nlohmann::json::array();
+  for (const ModuleStatistics& module : result.modules) {
+    modules.push_back({{"name", module.name},
+                       {"calls", module.calls},
+                       {"cache_hits", module.cacheHits},
+                       {"seconds", module.seconds}});
+  }
+  return {{"total_seconds", result.seconds},
+          {"symbolic_seconds", result.symbolicSeconds},
+          {"geometric_seconds", result.geometricSeconds},
+          {"ik_calls", geometric.ikCalls},
+          {"ik_seconds", geometric.ikSeconds},
+          {"motion_queries", geometric.motionQueries},
+          {"motion_seconds", geometric.motionSeconds},
+          {"state_checks", geometric.checks.stateChecks},
+          {"state_check_seconds", geometric.checks.stateSeconds},
+          {"motion_checks", geometric.checks.motionChecks},
+          {"motion_check_seconds", geometric.checks.motionSeconds},
+          {"geometric_calls", geometric.calls},
+          {"geometric_failures", geometric.failures},
+          {"geometric_states", result.geometricStates},
+          {"expanded", result.search.expanded},
+          {"knowledge_states", result.search.beliefs},
+          {"plan_actions", actions},
+          {"plan_waypoints", waypoints},
+          {"modules", modules}};
+}
+
+nlohmann::json planFileJson(Solver& solver, const SolveResult& result, const PlanSources& sources) {
+  nlohmann::json nodes = nlohmann::json::array();
+  for (std::size_t id = 0; id < result.plan.nodes.size(); ++id) {
+    nodes.push_back(nodeJson(solver, result, id));
+  }
+  const PlanVerification& verification = result.verification;
+  return {{"format", "kaboum-plan"},
+          {"version", 1},
+          {"domain", sources.domain},
+          {"problem", sources.problem},
+          {"scene", sources.scene},
+          {"status", toString(result.status)},
+          {"robots", robotsJson(solver.world())},
+          {"initial_state", stateJson(solver.world(), solver.world().initialState())},
+          {"root", result.plan.root},
+          {"nodes", nodes},
+          {"statistics", statisticsJson(result)},
+          {"verification",
+           {{"passed", verification.passed()},
+            {"symbolic_valid", verification.symbolic.valid},
+            {"symbolic_message", verification.symbolic.message},
+            {"paths_checked", verification.pathsChecked},
+            {"paths", verification.paths},
+            {"samples", verification.samples},
+            {"colliding_paths", verification.collidingPaths},
+            {"smallest_clearance", finiteOrNull(verification.smallestClearance)},
+            {"first_collision", verification.firstCollision},
+            {"seconds", verification.seconds}}}};
+}
+
+}  // namespace kaboum::tamp

@@ -1,0 +1,248 @@
+// The integrated planner: the symbolic–geometric map, the geometric attachments, solving a domain
+// in a scene, and the plan with its verified geometry.
+#include <gtest/gtest.h>
+
+#include "../support/test_support.hpp"
+#include "kaboum/core/error.hpp"
+#include "kaboum/symbolic/contingent_parser.hpp"
+#include "kaboum/tamp/solver.hpp"
+
+namespace kaboum::tamp {
+
+using namespace kaboum::testing;
+
+namespace {
+
+std::string pickAndPlaceScene() {
+  return exampleFile("pick-and-place/scene.yaml");
+}
+
+const World& pickAndPlaceWorld() {
+  static const World world(readSceneFile(pickAndPlaceScene()), {MeshPieces::Hulls, std::nullopt});
+  return world;
+}
+
+// A domain with the geometric attachments move and pickUp over the fluent (geometry).
+const char* const kPickDomain = R"((define (domain pick)
+  (:requirements :strips :typing :negative-preconditions :numeric-fluents)
+  (:types robot item)
+  (:predicates (handempty ?r - robot) (holding ?r - robot ?o - item))
+  (:functions (geometry))
+  (:modules
+    (transit ?r - robot (geometry) effect move :reads ((geometry)))
+    (grasp ?r - robot ?o - item (geometry) effect pickUp :reads ((geometry))))
+  (:action moveto :parameters (?r - robot) :effect [transit ?r])
+  (:action pickup
+    :parameters (?r - robot ?o - item)
+    :precondition (handempty ?r)
+    :effect (and (not (handempty ?r)) (holding ?r ?o) [grasp ?r ?o]))))";
+
+std::string pickProblem(const std::string& objects = "kr5 - robot block - item",
+                        const std::string& init = "(handempty kr5) (= (geometry) 0)") {
+  return "(define (problem p) (:domain pick) (:objects " + objects + ") (:init " + init +
+         ") (:goal (holding kr5 block)))";
+}
+
+symbolic::ContingentProblem parse(const std::string& domain, const std::string& problem) {
+  return symbolic::parseContingent(domain, "domain.pddl", problem, "problem.pddl");
+}
+
+std::string solverError(const std::string& domain, const std::string& problem) {
+  try {
+    Solver solver(pickAndPlaceWorld(), parse(domain, problem));
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  return "no error";
+}
+
+}  // namespace
+
+TEST(GeometricStateMap, EqualStatesShareAnIdentifierAndTheInverseGivesTheState) {
+  const World& world = pickAndPlaceWorld();
+  GeometricStateMap map(1e-9);
+  const GeometricState initial = world.initialState();
+  EXPECT_EQ(map.intern(initial), 0U);
+  EXPECT_EQ(map.intern(GeometricState(initial)), 0U);
+  GeometricState nudged = initial;
+  nudged.robots[0].configuration[0] += 1e-12;  // below the tolerance
+  EXPECT_EQ(map.intern(nudged), 0U);
+  GeometricState moved = initial;
+  moved.robots[0].configuration[0] += 1e-6;
+  EXPECT_EQ(map.intern(moved), 1U);
+  EXPECT_EQ(map.find(moved), std::optional<std::size_t>(1));
+  EXPECT_EQ(map.size(), 2U);
+  EXPECT_EQ(map.state(1), moved);
+  EXPECT_EQ(map.state(0), initial);
+  GeometricState held = initial;
+  world.hold(held, 0, 6, world.find("block")->index, Pose::Identity());
+  EXPECT_EQ(map.intern(held), 2U) << "holding an object is another state";
+  EXPECT_FALSE(map.find(GeometricState{}).has_value());
+  EXPECT_THROW((void)map.state(3), std::out_of_range);
+}
+
+TEST(GeometricStateMap, PosesAreMappedPerObject) {
+  GeometricStateMap map;
+  Pose a = Pose::Identity();
+  Pose b = a;
+  b.translation().x() = 0.1;
+  EXPECT_EQ(map.internPose(2, a), 0U);
+  EXPECT_EQ(map.internPose(2, b), 1U);
+  EXPECT_EQ(map.internPose(2, a), 0U);
+  EXPECT_EQ(map.internPose(0, b), 0U) << "each object has its own identifiers";
+  EXPECT_TRUE(map.pose(2, 1).isApprox(b));
+  EXPECT_THROW(GeometricStateMap(0.0), std::invalid_argument);
+}
+
+TEST(Solver, PicksUpTheBlockWithVerifiedCertifiedPaths) {
+  const World& world = pickAndPlaceWorld();
+  Solver solver(world, parse(kPickDomain, pickProblem()));
+  const SolveResult result = solver.solve();
+  ASSERT_EQ(result.status, PlannerStatus::Solved) << result.message;
+  EXPECT_TRUE(result.verification.passed()) << result.message;
+  EXPECT_TRUE(result.verification.symbolic.valid);
+  EXPECT_GE(result.verification.paths, 3U);
+  EXPECT_EQ(result.verification.collidingPaths, 0U);
+  // The pickup carries transit, approach, grasp and lift, and ends holding the block.
+  const ActionGeometry* pick = nullptr;
+  for (const auto& node : result.geometry) {
+    for (const ActionGeometry& action : node) {
+      if (action.procedure == "pickUp") pick = &action;
+    }
+  }
+  ASSERT_NE(pick, nullptr);
+  std::vector<GeometricStep::Kind> kinds;
+  for (const GeometricStep& step : pick->steps) kinds.push_back(step.kind);
+  EXPECT_EQ(kinds, (std::vector<GeometricStep::Kind>{
+                       GeometricStep::Kind::Transit, GeometricStep::Kind::Approach,
+                       GeometricStep::Kind::Grasp, GeometricStep::Kind::Retreat}));
+  const std::vector<GeometricState> states =
+      statesAlong(world, solver.attachments().map().state(pick->from), *pick);
+  EXPECT_EQ(states.back(), solver.attachments().map().state(pick->to));
+  const std::size_t block = world.find("block")->index;
+  EXPECT_EQ(states.back().robots[0].heldObjects, std::vector<std::size_t>{block});
+  EXPECT_FALSE(states.back().placements[world.scene().slot(block)].present);
+  // Each motion starts where the previous one ended.
+  for (std::size_t s = 0; s < pick->steps.size(); ++s) {
+    if (pick->steps[s].path.empty()) continue;
+    EXPECT_EQ(pick->steps[s].path.front(), states[s].robots[0].configuration) << "step " << s;
+  }
+}
+
+TEST(Solver, TheSameSeedGivesTheSamePlanAndAnotherSeedAnotherGrasp) {
+  const auto firstPath = [](std::uint64_t seed) {
+    SolveOptions options;
+    options.verify = false;
+    options.geometry.seed = seed;
+    Solver solver(pickAndPlaceWorld(), parse(kPickDomain, pickProblem()), options);
+    const SolveResult result = solver.solve();
+    EXPECT_EQ(result.status, PlannerStatus::Solved);
+    for (const auto& node : result.geometry) {
+      if (!node.empty()) return node.front().steps.at(1).path.back();
+    }
+    return std::vector<double>{};
+  };
+  EXPECT_EQ(firstPath(1), firstPath(1));
+  EXPECT_NE(firstPath(1), firstPath(2));
+}
+
+namespace {
+
+// kPickDomain without its move action: a finite search space (each move leads to a new state).
+std::string withoutMove() {
+  std::string domain = kPickDomain;
+  const std::string move = "(:action moveto :parameters (?r - robot) :effect [transit ?r])";
+  domain.erase(domain.find(move), move.size());
+  return domain;
+}
+
+}  // namespace
+
+TEST(SolverBadInput, NamesWithoutASceneEntityNameBothFiles) {
+  const std::string error = solverError(kPickDomain, pickProblem("kr5 - robot block cup - item"));
+  EXPECT_PRED_FORMAT2(::testing::IsSubstring,
+                      "problem.pddl: 'cup' (argument 2 of module 'grasp', attachment 'pickUp') "
+                      "names no robot, tool, object or location of ",
+                      error);
+  EXPECT_PRED_FORMAT2(::testing::IsSubstring, "pick-and-place/scene.yaml", error);
+  EXPECT_PRED_FORMAT2(::testing::IsSubstring,
+                      "'arm' (argument 1 of module 'transit', attachment 'move') names no robot",
+                      solverError(kPickDomain, pickProblem("kr5 arm - robot block - item")));
+}
+
+TEST(Solver, AnArgumentOfTheWrongKindMakesTheCallFail) {
+  // PDDL's root type lets `table` (a fixed object) be picked symbolically; the geometry says no.
+  Solver solver(pickAndPlaceWorld(),
+                parse(withoutMove(),
+                      "(define (problem p) (:domain pick) (:objects kr5 - robot "
+                      "table - item) (:init (handempty kr5) (= (geometry) 0)) "
+                      "(:goal (holding kr5 table)))"));
+  const SolveResult result = solver.solve();
+  EXPECT_EQ(result.status, PlannerStatus::Unsolvable);
+  EXPECT_EQ(result.geometric.lastFailure, "pickUp(kr5, table): not a movable object of the scene");
+}
+
+TEST(SolverBadInput, TheGeometricFluentMustStartAtTheInitialState) {
+  EXPECT_PRED_FORMAT2(
+      ::testing::IsSubstring,
+      "problem.pddl: the geometric state fluent (geometry) must start at the "
+      "scene's initial state: add (= (geometry) 0) to :init",
+      solverError(kPickDomain, pickProblem("kr5 - robot block - item", "(handempty kr5)")));
+  EXPECT_PRED_FORMAT2(::testing::IsSubstring, "must start at the scene's initial state",
+                      solverError(kPickDomain, pickProblem("kr5 - robot block - item",
+                                                           "(handempty kr5) (= (geometry) 3)")));
+}
+
+namespace {
+
+// kPickDomain with its `transit` module and `moveto` action replaced.
+std::string withTransit(const std::string& module, const std::string& action) {
+  std::string domain = kPickDomain;
+  const std::string oldModule = "(transit ?r - robot (geometry) effect move :reads ((geometry)))";
+  domain.replace(domain.find(oldModule), oldModule.size(), module);
+  const std::string oldAction = "(:action moveto :parameters (?r - robot) :effect [transit ?r])";
+  domain.replace(domain.find(oldAction), oldAction.size(), action);
+  return domain;
+}
+
+}  // namespace
+
+TEST(SolverBadInput, ModulesMustUseTheAttachmentsAsTheyAreDefined) {
+  EXPECT_PRED_FORMAT2(
+      ::testing::IsSubstring, "domain.pddl:7:5: module 'transit': 'move' is an effect",
+      solverError(withTransit("(transit ?r - robot conditionchecker move :reads ((geometry)))",
+                              "(:action moveto :parameters (?r - robot) :precondition "
+                              "[transit ?r])"),
+                  pickProblem()));
+  EXPECT_PRED_FORMAT2(
+      ::testing::IsSubstring,
+      "module 'transit': the geometric attachment 'move' reads the geometric state's fluent "
+      "first and writes it (one fluent)",
+      solverError(withTransit("(transit ?r - robot (geometry) effect move)",
+                              "(:action moveto :parameters (?r - robot) :effect [transit ?r])"),
+                  pickProblem()));
+  EXPECT_PRED_FORMAT2(
+      ::testing::IsSubstring, "module 'transit': 'move' takes 1 argument(s), not 2",
+      solverError(withTransit("(transit ?r - robot ?o - item (geometry) effect move :reads "
+                              "((geometry)))",
+                              "(:action moveto :parameters (?r - robot ?o - item) :effect "
+                              "[transit ?r ?o])"),
+                  pickProblem()));
+}
+
+TEST(Solver, AnUnreachableObjectIsNoPlanWithTheGeometricReason) {
+  std::string scene = test::slurp(pickAndPlaceScene());
+  // The block out of the arm's reach.
+  scene.replace(scene.find("[0.45, 0.25, -0.075]"), 20, "[0.45, 1.40, -0.075]");
+  scene.replace(scene.find("[0.4, 0.9, 0.04]"), 16, "[0.4, 3.0, 0.04]");
+  const World world(parseSceneText(scene, "scene.yaml", exampleFile("pick-and-place")),
+                    {MeshPieces::Hulls, std::nullopt});
+  Solver solver(world, parse(withoutMove(), pickProblem()));
+  const SolveResult result = solver.solve();
+  EXPECT_EQ(result.status, PlannerStatus::Unsolvable);
+  EXPECT_PRED_FORMAT2(::testing::IsSubstring, "search space is exhausted", result.message);
+  EXPECT_PRED_FORMAT2(::testing::IsSubstring, "pickUp(kr5, block): no IK solution",
+                      result.geometric.lastFailure);
+}
+
+}  // namespace kaboum::tamp
