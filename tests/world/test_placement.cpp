@@ -3,10 +3,12 @@
 // (the objects' exact vertices, FCL on the original shapes).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
 
+#include "../support/test_support.hpp"
 #include "kaboum/io/mesh_io.hpp"
 #include "kaboum/io/scene_file.hpp"
 #include "kaboum/testing/data_paths.hpp"
@@ -62,8 +64,8 @@ Support onLocation(const std::string& name) {
 
 // Points of an object's original geometry in its frame: a box's corners, the crate mesh's
 // vertices, 64 points on each rim of the can.
-std::vector<Vec3> originalPoints(std::size_t object) {
-  const CollisionShape& shape = cell().description().objects[object].geometry.shape;
+std::vector<Vec3> originalPoints(const World& world, std::size_t object) {
+  const CollisionShape& shape = world.description().objects[object].geometry.shape;
   std::vector<Vec3> points;
   switch (shape.kind) {
     case CollisionShape::Kind::Box:
@@ -92,29 +94,41 @@ std::vector<Vec3> originalPoints(std::size_t object) {
   return points;
 }
 
-// Whether world point p lies in the box region of location `location`.
-bool inRegion(std::size_t location, const Vec3& p) {
-  const auto& box = std::get<BoxRegion>(cell().description().locations[location].region);
-  const Vec3 local = box.pose.inverse() * p;
-  return (local.array() >= box.lower.array()).all() && (local.array() <= box.upper.array()).all();
+// Whether world point p lies in the region of location `location`: a box by its bounds, a hull
+// by the facets of its points.
+bool inRegion(const World& world, std::size_t location, const Vec3& p) {
+  const auto& region = world.description().locations[location].region;
+  if (const auto* box = std::get_if<BoxRegion>(&region)) {
+    const Vec3 local = box->pose.inverse() * p;
+    return (local.array() >= box->lower.array()).all() &&
+           (local.array() <= box->upper.array()).all();
+  }
+  const auto& hull = std::get<HullRegion>(region);
+  const Vec3 local = hull.pose.inverse() * p;
+  const ConvexContainer container(hull.points);
+  return std::all_of(
+      container.planes().begin(), container.planes().end(),
+      [&](const HullPlane& plane) { return plane.normal.dot(local) <= plane.offset; });
 }
 
-bool originalInside(std::size_t object, const Pose& pose, std::size_t location) {
-  for (const Vec3& p : originalPoints(object)) {
-    if (!inRegion(location, pose * p)) return false;
+bool originalInside(const World& world, std::size_t object, const Pose& pose,
+                    std::size_t location) {
+  for (const Vec3& p : originalPoints(world, object)) {
+    if (!inRegion(world, location, pose * p)) return false;
   }
   return true;
 }
 
 // The first collision of object `object` at `pose` with another present object or a robot link
 // in `state`, by FCL on the original geometry; empty when there is none.
-std::string exactCollision(const GeometricState& state, std::size_t object, const Pose& pose) {
-  const World& world = cell();
-  const std::size_t body = reference().objectBody(object);
+std::string exactCollision(const verify::ReferenceGeometry& reference, const GeometricState& state,
+                           std::size_t object, const Pose& pose) {
+  const World& world = reference.world();
+  const std::size_t body = reference.objectBody(object);
   for (std::size_t other = 0; other < world.scene().size(); ++other) {
     if (other == object || !world.scene().present(other, state.placements)) continue;
-    if (reference()
-            .proximity(body, pose, reference().objectBody(other),
+    if (reference
+            .proximity(body, pose, reference.objectBody(other),
                        world.scene().pose(other, state.placements), 0.0)
             .collides) {
       return world.scene().name(other);
@@ -125,10 +139,10 @@ std::string exactCollision(const GeometricState& state, std::size_t object, cons
     std::vector<Pose> links(robot.model().links().size());
     robot.model().linkPoses(state.robots[r].configuration, links);
     for (std::size_t link = 0; link < links.size(); ++link) {
-      const auto linkBody = reference().linkBody(r, link);
-      if (linkBody && reference()
-                          .proximity(body, pose, *linkBody, robot.basePose() * links[link], 0.0)
-                          .collides) {
+      const auto linkBody = reference.linkBody(r, link);
+      if (linkBody &&
+          reference.proximity(body, pose, *linkBody, robot.basePose() * links[link], 0.0)
+              .collides) {
         return robot.model().links()[link].name;
       }
     }
@@ -155,6 +169,24 @@ TEST(RestingFaces, ABoxHasSixAndACylinderItsTwoCaps) {
   EXPECT_TRUE(placements().restingFaces(id("table")).empty()) << "static";
 }
 
+// A skewed tetrahedron (centroid (1, 1, 0.25) × 0.1): on its bottom face (0, 0, -1) the centroid
+// falls outside the triangle x + y <= 1, so that face is not stable; the other three are.
+TEST(RestingFaces, AFaceWhoseCentroidFallsOutsideIsNotStable) {
+  const test::ScratchDir dir;
+  dir.write("wedge.off",
+            "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n3 3 1\n"
+            "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n");
+  const World world(parseSceneText("objects:\n"
+                                   "  - name: wedge\n"
+                                   "    geometry: {mesh: {file: wedge.off, scale: 0.1}}\n"
+                                   "    movable: true\n",
+                                   "wedge.yaml", dir.file("")),
+                    {MeshPieces::Hulls, std::nullopt});
+  const auto faces = PlacementGeometry(world).restingFaces(0);
+  ASSERT_EQ(faces.size(), 3U);
+  for (const RestingFace& face : faces) EXPECT_GT((face.normal - Vec3(0, 0, -1)).norm(), 0.1);
+}
+
 TEST(RestingFaces, ExplicitNormalsAreTakenAsGivenAndPutDown) {
   const auto crate = placements().restingFaces(id("crate"));
   ASSERT_EQ(crate.size(), 2U);
@@ -165,7 +197,8 @@ TEST(RestingFaces, ExplicitNormalsAreTakenAsGivenAndPutDown) {
       const Pose pose = restingPose(face, 0.2, -0.3, 0.5, yaw);
       EXPECT_TRUE((pose.linear() * face.normal).isApprox(Vec3(0, 0, -1)));
       double lowest = 1e9;
-      for (const Vec3& p : originalPoints(id("crate"))) lowest = std::min(lowest, (pose * p).z());
+      for (const Vec3& p : originalPoints(cell(), id("crate")))
+        lowest = std::min(lowest, (pose * p).z());
       EXPECT_NEAR(lowest, 0.5, 1e-9);
     }
   }
@@ -193,7 +226,7 @@ TEST(IsInside, MaySayNotInsideWithinTheObjectsEpsilonOfTheBoundary) {
   const double wall = 0.75, radius = 0.045;
   const Pose close = at(wall - radius - 0.0004, 0, 0.7701);
   const Pose clear = at(wall - radius - 0.001, 0, 0.7701);
-  EXPECT_TRUE(originalInside(can, close, tray));
+  EXPECT_TRUE(originalInside(cell(), can, close, tray));
   EXPECT_FALSE(placements().isInside(can, close, tray));
   EXPECT_TRUE(placements().isInside(can, clear, tray));
 }
@@ -214,7 +247,7 @@ TEST(IsInside, InsideImpliesTheOriginalGeometryInside) {
               .toRotationMatrix();
       if (!placements().isInside(object, pose, tray)) continue;
       ++inside;
-      ASSERT_TRUE(originalInside(object, pose, tray)) << name << " trial " << trial;
+      ASSERT_TRUE(originalInside(cell(), object, pose, tray)) << name << " trial " << trial;
     }
     EXPECT_GT(inside, 10) << name;
     EXPECT_LT(inside, 490) << name;
@@ -302,11 +335,11 @@ void expectValidPlacement(const Found& found, std::size_t object, const std::str
   const Pose& pose = *found.space.pose;
   QueryScratch scratch = cell().scratch();
   EXPECT_TRUE(placements().isInside(found.state, object, id(location)));
-  EXPECT_TRUE(originalInside(object, pose, id(location)));
+  EXPECT_TRUE(originalInside(cell(), object, pose, id(location)));
   EXPECT_EQ(placements().isOnSupportSurface(found.state, object, scratch), support);
   const auto collision = cell().firstCollision(found.state);
   EXPECT_FALSE(collision) << cell().describe(*collision);
-  EXPECT_EQ(exactCollision(found.state, object, pose), "");
+  EXPECT_EQ(exactCollision(reference(), found.state, object, pose), "");
   const RestingFace& face = placements().restingFaces(object)[found.space.face];
   EXPECT_TRUE((pose.linear() * face.normal).isApprox(Vec3(0, 0, -1)));
 }
@@ -399,6 +432,39 @@ TEST(FreeSpaceFound, RestsOnASupportSurfaceLocationAndAvoidsTheRobot) {
   const Found beside = freeSpace(id("box_b"), "beside_torso", {});
   expectValidPlacement(beside, id("box_b"), "beside_torso", onLocation("beside_torso"));
   EXPECT_GT(beside.space.samples, 1U);
+}
+
+// On the bimanual cell: a hull location on a decomposed mesh tabletop (data/meshes).
+TEST(FreeSpaceFound, PutsTheBearingInTheHullAreaOnTheMeshTabletop) {
+  const World world(readSceneFile(exampleFile("scenes/bimanual-cell.yaml")));
+  const PlacementGeometry geometry(world);
+  const verify::ReferenceGeometry exact(world);
+  const std::size_t bearing = world.find("bearing").value().index;
+  const std::size_t area = world.find("assembly-area").value().index;
+  const Support tabletop{Support::Kind::Object, world.find("tabletop").value().index};
+  // The pipe's axis is its geometry's z turned to the object's x: its caps face ±x.
+  const auto pipe = geometry.restingFaces(world.find("pipe").value().index);
+  ASSERT_EQ(pipe.size(), 2U);
+  EXPECT_NEAR(std::abs(pipe[0].normal.x()), 1.0, 1e-9);
+  QueryScratch scratch = world.scratch();
+  GeometricState state = world.initialState();
+  EXPECT_EQ(geometry.isOnSupportSurface(state, bearing, scratch), tabletop);
+  EXPECT_FALSE(geometry.isInside(state, bearing, area));
+  for (const SearchStrategy strategy :
+       {SearchStrategy::Linear, SearchStrategy::Quadtree, SearchStrategy::Random}) {
+    FreeSpaceOptions options;
+    options.strategy = strategy;
+    const FreeSpace found = geometry.freeSpaceFound(state, bearing, area, options, scratch);
+    ASSERT_TRUE(found.pose);
+    EXPECT_EQ(found.support, tabletop);
+    state.placements[world.scene().slot(bearing)].pose = *found.pose;
+    EXPECT_TRUE(geometry.isInside(state, bearing, area));
+    EXPECT_TRUE(originalInside(world, bearing, *found.pose, area));
+    EXPECT_EQ(geometry.isOnSupportSurface(state, bearing, scratch), tabletop);
+    EXPECT_FALSE(world.firstCollision(state));
+    EXPECT_EQ(exactCollision(exact, state, bearing, *found.pose), "");
+    state = world.initialState();
+  }
 }
 
 TEST(FreeSpaceFound, NothingInALocationTooSmallOrFullyOccupied) {
