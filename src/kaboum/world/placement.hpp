@@ -80,7 +80,7 @@ struct FreeSpace {
 // outlive it): every location's convex region in the world frame, every object's pieces as facet
 // planes (for the downward raycast) and every movable object's resting faces. The queries take a
 // QueryScratch (World::scratch(), one per thread) for the robots' link poses; they allocate
-// nothing.
+// nothing. States must have the World's shape (World::firstCollision checks one).
 class PlacementGeometry {
  public:
   explicit PlacementGeometry(const World& world);
