@@ -182,7 +182,8 @@ TEST(RestingFaces, AFaceWhoseCentroidFallsOutsideIsNotStable) {
                                    "    movable: true\n",
                                    "wedge.yaml", dir.file("")),
                     {MeshPieces::Hulls, std::nullopt});
-  const auto faces = PlacementGeometry(world).restingFaces(0);
+  const PlacementGeometry geometry(world);
+  const auto faces = geometry.restingFaces(0);
   ASSERT_EQ(faces.size(), 3U);
   for (const RestingFace& face : faces) EXPECT_GT((face.normal - Vec3(0, 0, -1)).norm(), 0.1);
 }
