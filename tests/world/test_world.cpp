@@ -11,6 +11,7 @@
 #include "kaboum/core/error.hpp"
 #include "kaboum/io/scene_file.hpp"
 #include "kaboum/testing/data_paths.hpp"
+#include "kaboum/world/placement.hpp"
 #include "kaboum/world/world.hpp"
 
 namespace kaboum::world {
@@ -192,6 +193,34 @@ TEST(World, QueriesAllocateNothing) {
     }
   });
   EXPECT_EQ(allocations, 0);
+}
+
+// The placement predicates on the example scene allocate nothing per call (placement.hpp).
+TEST(World, PlacementPredicatesAllocateNothing) {
+  const World& world = twoArmsWorld();
+  const PlacementGeometry placements(world);
+  const GeometricState state = world.initialState();
+  QueryScratch scratch = world.scratch();
+  const std::size_t crate = objectId(world, "crate");
+  const std::size_t goal = world.find("goal").value().index;
+  FreeSpaceOptions options;
+  std::optional<Support> support;
+  FreeSpace found;
+  bool inside = false;
+  const long allocations = test::allocationsDuring([&] {
+    for (const SearchStrategy strategy :
+         {SearchStrategy::Linear, SearchStrategy::Quadtree, SearchStrategy::Random}) {
+      options.strategy = strategy;
+      found = placements.freeSpaceFound(state, crate, goal, options, scratch);
+    }
+    support = placements.isOnSupportSurface(state, crate, scratch);
+    inside = placements.isInside(state, crate, goal);
+  });
+  EXPECT_EQ(allocations, 0);
+  ASSERT_TRUE(found.pose);
+  EXPECT_TRUE(placements.isInside(crate, *found.pose, goal));
+  EXPECT_EQ(support, (Support{Support::Kind::Object, objectId(world, "table")}));
+  EXPECT_FALSE(inside) << "the crate starts beside the goal region (y -0.1; it ends at -0.15)";
 }
 
 TEST(World, RejectsAStateOfTheWrongShape) {

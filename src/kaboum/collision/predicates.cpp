@@ -1,7 +1,5 @@
 #include "kaboum/collision/predicates.hpp"
 
-#include <limits>
-
 namespace kaboum::collision {
 
 using namespace kaboum::geometry;
@@ -25,22 +23,9 @@ bool isOnSupportSurface(const CollisionScene& scene, std::span<const Placement> 
   const CollisionBody& body = scene.body(object);
   const Pose& pose = scene.pose(object, state);
   if (scene.firstCollision(state, body, pose, 0.0, object)) return false;
-  double lowest = std::numeric_limits<double>::infinity();
-  for (std::size_t p = 0; p < body.pieceCount(); ++p) {
-    for (const Vec3& v : body.piece(p).vertices()) lowest = std::min(lowest, (pose * v).z());
-  }
-  for (std::size_t p = 0; p < body.pieceCount(); ++p) {
-    for (const Vec3& v : body.piece(p).vertices()) {
-      const Vec3 top = pose * v;
-      if (top.z() > lowest + band) continue;
-      const SegmentSupport probe{top, top - Vec3(0, 0, drop)};
-      const Aabb box{probe.b, probe.a};
-      if (!scene.firstWithin(state, probe, box, probe.center(), 0.5 * drop, 0.0, object)) {
-        return false;
-      }
-    }
-  }
-  return true;
+  return allBottomProbes(body, pose, drop, band, [&](const SegmentSupport& segment) {
+    return probeTouches(scene, state, segment, object).has_value();
+  });
 }
 
 }  // namespace kaboum::collision

@@ -4,6 +4,9 @@
 // sweptVolumesCollide (3).
 #pragma once
 
+#include <algorithm>
+#include <limits>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -52,5 +55,37 @@ struct SegmentSupport {
   [[nodiscard]] Vec3 center() const { return 0.5 * (a + b); }
 };
 static_assert(SupportMapping<SegmentSupport>);
+
+// The probes of seed 003's support heuristic: calls probe(segment) for the vertical segment of
+// length `drop` going down (−z) from each lowest vertex of `body`'s pieces at `pose` (those within
+// `band` of the lowest one), in piece and vertex order, until probe returns false. Returns whether
+// every call returned true. Allocates nothing.
+template <class Probe>
+bool allBottomProbes(const CollisionBody& body, const Pose& pose, double drop, double band,
+                     Probe&& probe) {
+  double lowest = std::numeric_limits<double>::infinity();
+  for (std::size_t p = 0; p < body.pieceCount(); ++p) {
+    for (const Vec3& v : body.piece(p).vertices()) lowest = std::min(lowest, (pose * v).z());
+  }
+  for (std::size_t p = 0; p < body.pieceCount(); ++p) {
+    for (const Vec3& v : body.piece(p).vertices()) {
+      const Vec3 top = pose * v;
+      if (top.z() > lowest + band) continue;
+      if (!probe(SegmentSupport{top, top - Vec3(0, 0, drop)})) return false;
+    }
+  }
+  return true;
+}
+
+// Whether the probe `segment` (a downward one of allBottomProbes) touches a piece of an object
+// present in `state` other than `ignore`; which one, the first the broad phase finds.
+inline std::optional<std::size_t> probeTouches(const CollisionScene& scene,
+                                               std::span<const Placement> state,
+                                               const SegmentSupport& segment,
+                                               std::optional<std::size_t> ignore) {
+  const Aabb box{segment.a.cwiseMin(segment.b), segment.a.cwiseMax(segment.b)};
+  return scene.firstWithin(state, segment, box, segment.center(),
+                           0.5 * (segment.a - segment.b).norm(), 0.0, ignore);
+}
 
 }  // namespace kaboum::collision

@@ -91,35 +91,9 @@ class CollisionScene {
     return near;
   }
 
-  // An object of `state` with a piece within `margin` of `body` at `pose` (model-model collision,
-  // Definition 1 (1)), skipping `ignore`: the fixed obstacles in the order the tree visits them,
-  // then the present movable objects by slot; so the same for the same state and query, but not
-  // necessarily the lowest index when several collide. Allocates nothing.
-  [[nodiscard]] std::optional<std::size_t> firstCollision(
-      std::span<const Placement> state, const CollisionBody& body, const Pose& pose, double margin,
-      std::optional<std::size_t> ignore = {}) const;
-
- private:
-  static constexpr std::size_t kFixed = static_cast<std::size_t>(-1);
-  struct Object {
-    BodyPtr body;
-    Pose pose;  // a fixed obstacle's pose; a movable object's initial placement
-    std::string name;
-    std::size_t slot = kFixed;  // a movable object's index in SceneState
-  };
-  struct FixedPiece {  // one piece of one fixed obstacle in the broad phase
-    std::size_t object = 0;
-    std::size_t piece = 0;
-    Vec3 centre{0, 0, 0};  // world centre of the piece's bounding sphere
-  };
-  void checkState(std::span<const Placement> state) const {
-    if (state.size() != movable_.size()) throwStateMismatch(state.size());
-  }
-  [[noreturn]] void throwStateMismatch(std::size_t placements) const;
-
   // Calls visit(object, piece, objectPose) for every piece of a fixed obstacle or present movable
   // object of `state` (except `ignore`) whose box overlaps `box` and bounding sphere comes within
-  // `margin` of (centre, radius), until visit returns false.
+  // `margin` of (centre, radius), until visit returns false. Allocates nothing.
   template <class Visit>
   void forEachPieceNear(std::span<const Placement> state, const Aabb& box, const Vec3& centre,
                         double radius, double margin, std::optional<std::size_t> ignore,
@@ -153,6 +127,32 @@ class CollisionScene {
       }
     }
   }
+  // An object of `state` with a piece within `margin` of `body` at `pose` (model-model collision,
+  // Definition 1 (1)), skipping `ignore`: the fixed obstacles in the order the tree visits them,
+  // then the present movable objects by slot; so the same for the same state and query, but not
+  // necessarily the lowest index when several collide. Allocates nothing.
+  [[nodiscard]] std::optional<std::size_t> firstCollision(
+      std::span<const Placement> state, const CollisionBody& body, const Pose& pose, double margin,
+      std::optional<std::size_t> ignore = {}) const;
+
+ private:
+  static constexpr std::size_t kFixed = static_cast<std::size_t>(-1);
+  struct Object {
+    BodyPtr body;
+    Pose pose;  // a fixed obstacle's pose; a movable object's initial placement
+    std::string name;
+    std::size_t slot = kFixed;  // a movable object's index in SceneState
+  };
+  struct FixedPiece {  // one piece of one fixed obstacle in the broad phase
+    std::size_t object = 0;
+    std::size_t piece = 0;
+    Vec3 centre{0, 0, 0};  // world centre of the piece's bounding sphere
+  };
+  void checkState(std::span<const Placement> state) const {
+    if (state.size() != movable_.size()) throwStateMismatch(state.size());
+  }
+  [[noreturn]] void throwStateMismatch(std::size_t placements) const;
+
   static Aabb worldBox(const ConvexPolytope& piece, const Pose& pose);
 
   std::vector<Object> objects_;
