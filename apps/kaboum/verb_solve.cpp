@@ -64,9 +64,11 @@ void printSummary(const tamp::SolveResult& result) {
 int run(Options& options) {
   options.solve.geometry.motion.timeLimit = options.motionTimeLimit;
   options.solve.geometry.motion.seed = options.solve.geometry.seed;
+  // The PDDL first: its mistakes show before the scene's preprocessing.
+  symbolic::ContingentProblem problem =
+      symbolic::loadContingent(options.files.domain, options.files.problem);
   const world::World world = loadWorld(options.files.scene, options.load);
-  tamp::Solver solver(world, symbolic::loadContingent(options.files.domain, options.files.problem),
-                      options.solve);
+  tamp::Solver solver(world, std::move(problem), options.solve);
   const tamp::SolveResult result = solver.solve();
   const bool solved = result.status == PlannerStatus::Solved && result.verification.passed();
   const nlohmann::json plan = tamp::planFileJson(solver, result, options.files);
@@ -79,7 +81,8 @@ int run(Options& options) {
   if (options.json) {
     std::cout << plan.dump(2) << "\n";
   } else if (result.status == PlannerStatus::Solved) {
-    std::cout << symbolic::formatPlanTree(solver.task(), result.plan);
+    const std::string tree = symbolic::formatPlanTree(solver.task(), result.plan);
+    std::cout << tree << (tree.ends_with('\n') ? "" : "\n");
   }
   if (!options.quiet || !solved) printSummary(result);
   return solved ? 0 : 1;

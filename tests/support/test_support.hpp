@@ -76,6 +76,15 @@ inline CliResult runCli(const ScratchDir& dir, const std::string& arguments) {
   return runProgram(KABOUM_CLI, dir, arguments);
 }
 
+// " --cache-dir DIR": one decomposition cache in the build directory shared by the CLI tests of
+// every test program (robot meshes take seconds to decompose; the cache is safe for concurrent
+// runs and keyed by content, so it never serves a stale entry).
+inline std::string sharedCacheOption() {
+  return " --cache-dir '" +
+         (std::filesystem::path(KABOUM_CLI).parent_path() / "test-decomposition-cache").string() +
+         "'";
+}
+
 // Runs the `kaboum-compare` benchmark program (kaboum against FCL, Bullet and libccd).
 inline CliResult runCompare(const ScratchDir& dir, const std::string& arguments) {
   return runProgram(KABOUM_COMPARE, dir, arguments);

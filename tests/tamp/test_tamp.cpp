@@ -2,6 +2,9 @@
 // in a scene, and the plan with its verified geometry.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+#include <numeric>
+
 #include "../support/test_support.hpp"
 #include "kaboum/core/error.hpp"
 #include "kaboum/symbolic/contingent_parser.hpp"
@@ -243,6 +246,159 @@ TEST(Solver, AnUnreachableObjectIsNoPlanWithTheGeometricReason) {
   EXPECT_PRED_FORMAT2(::testing::IsSubstring, "search space is exhausted", result.message);
   EXPECT_PRED_FORMAT2(::testing::IsSubstring, "pickUp(kr5, block): no IK solution",
                       result.geometric.lastFailure);
+}
+
+}  // namespace kaboum::tamp
+
+namespace kaboum::tamp {
+
+using namespace kaboum::testing;
+
+namespace {
+
+std::string example(const std::string& file) {
+  return exampleFile("pick-and-place/" + file);
+}
+
+// The steps' kinds of the first action with `procedure` in the plan.
+std::vector<GeometricStep::Kind> stepKinds(const SolveResult& result,
+                                           const std::string& procedure) {
+  for (const auto& node : result.geometry) {
+    for (const ActionGeometry& action : node) {
+      if (action.procedure != procedure) continue;
+      std::vector<GeometricStep::Kind> kinds;
+      for (const GeometricStep& step : action.steps) kinds.push_back(step.kind);
+      return kinds;
+    }
+  }
+  return {};
+}
+
+// Calls condition checker `name` of a fresh attachment library on `state` with `arguments`.
+bool check(GeometricAttachments& attachments, const std::string& name,
+           const std::vector<std::string>& arguments, std::size_t stateId) {
+  symbolic::ProcedureRegistry registry;
+  attachments.registerProcedures(registry);
+  std::vector<symbolic::ObjectId> ids(arguments.size());
+  std::iota(ids.begin(), ids.end(), 0);
+  const std::vector<double> reads{static_cast<double>(stateId)};
+  return (*registry.checker(name))({ids, &arguments, reads});
+}
+
+}  // namespace
+
+TEST(Solver, MovesTheBlockFromTheLeftRegionToTheRightOne) {
+  const World& world = pickAndPlaceWorld();
+  Solver solver(world, symbolic::loadContingent(example("domain.pddl"), example("problem.pddl")));
+  const SolveResult result = solver.solve();
+  ASSERT_EQ(result.status, PlannerStatus::Solved) << result.message;
+  EXPECT_TRUE(result.verification.passed()) << result.message;
+  EXPECT_EQ(result.verification.paths, 6U);
+  EXPECT_EQ(stepKinds(result, "putDown"),
+            (std::vector<GeometricStep::Kind>{
+                GeometricStep::Kind::Transfer, GeometricStep::Kind::Approach,
+                GeometricStep::Kind::Release, GeometricStep::Kind::Retreat}));
+  // Where the plan ends: the block inside the right region, on the table, the hand empty.
+  std::size_t last = 0;
+  for (const auto& node : result.geometry) {
+    for (const ActionGeometry& action : node) last = std::max(last, action.to);
+  }
+  const GeometricState& end = solver.attachments().map().state(last);
+  const std::size_t block = world.find("block")->index;
+  EXPECT_TRUE(end.robots[0].heldObjects.empty());
+  PlacementGeometry placements(world);
+  QueryScratch scratch = world.scratch();
+  EXPECT_TRUE(placements.isInside(end, block, world.find("right")->index));
+  EXPECT_FALSE(placements.isInside(end, block, world.find("left")->index));
+  const std::optional<Support> support = placements.isOnSupportSurface(end, block, scratch);
+  ASSERT_TRUE(support.has_value());
+  EXPECT_EQ(support->index, world.find("table")->index);
+  EXPECT_FALSE(world.firstCollision(end).has_value());
+}
+
+TEST(GeometricAttachments, PlacementCheckersSeeTheInitialState) {
+  GeometricAttachments attachments(pickAndPlaceWorld());
+  EXPECT_TRUE(check(attachments, "isInside", {"block", "left"}, 0));
+  EXPECT_FALSE(check(attachments, "isInside", {"block", "right"}, 0));
+  EXPECT_FALSE(check(attachments, "isInside", {"kr5", "left"}, 0)) << "a robot is no object";
+  EXPECT_TRUE(check(attachments, "isOnSupportSurface", {"block"}, 0));
+  EXPECT_TRUE(check(attachments, "freeSpaceFound", {"block", "right"}, 0));
+  EXPECT_FALSE(check(attachments, "isColliding", {}, 0));
+  EXPECT_TRUE(check(attachments, "isReachable", {"kr5", "block"}, 0));
+  EXPECT_THROW(check(attachments, "isInside", {"block", "left"}, 5), InputError)
+      << "identifier 5 is no geometric state yet";
+}
+
+TEST(SolveCli, PrintsThePlanAndWritesThePlanFile) {
+  test::ScratchDir dir;
+  const std::string files = "'" + example("domain.pddl") + "' '" + example("problem.pddl") + "' '" +
+                            example("scene.yaml") + "'" + test::sharedCacheOption();
+  const test::CliResult run =
+      test::runCli(dir, "solve " + files + " --plan-out " + dir.file("plan.json"));
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_PRED_FORMAT2(::testing::IsSubstring, "(pickup kr5 block left)", run.out);
+  EXPECT_PRED_FORMAT2(::testing::IsSubstring, "kaboum solve: solved, 2 action(s)", run.err);
+  EXPECT_PRED_FORMAT2(::testing::IsSubstring, "0 colliding", run.err);
+  const nlohmann::json plan = nlohmann::json::parse(test::slurp(dir.file("plan.json")));
+  EXPECT_EQ(plan["format"], "kaboum-plan");
+  EXPECT_EQ(plan["verification"]["passed"], true);
+  EXPECT_EQ(plan["initial_state"]["robots"]["kr5"].size(), 6U);
+  int motions = 0;
+  for (const auto& node : plan["nodes"]) {
+    if (node["kind"] != "action") continue;
+    for (const auto& effect : node["geometry"]) {
+      for (const auto& step : effect["steps"]) {
+        if (step.contains("waypoints")) {
+          ++motions;
+          EXPECT_GE(step["waypoints"].size(), 2U);
+          EXPECT_EQ(step["waypoints"][0].size(), 6U);
+        }
+      }
+    }
+  }
+  EXPECT_EQ(motions, 6);
+  const test::CliResult json = test::runCli(dir, "solve " + files + " --json --quiet");
+  ASSERT_EQ(json.exitCode, 0) << json.err;
+  EXPECT_EQ(nlohmann::json::parse(json.out)["statistics"]["plan_actions"], 2);
+  EXPECT_TRUE(json.err.empty()) << json.err;
+}
+
+TEST(SolveCli, BadInputGivesOneLineAndExitCodeTwoAndNoPlanExitCodeOne) {
+  test::ScratchDir dir;
+  const std::string domain = "'" + example("domain.pddl") + "'";
+  const std::string scene = "'" + example("scene.yaml") + "'";
+  const std::string unknown = dir.write(
+      "unknown.pddl",
+      "(define (problem p) (:domain pick-and-place) (:objects kr5 - robot cup - object left - "
+      "location) (:init (handempty kr5) (at cup left) (= (geometry) 0)) (:goal (holding kr5 "
+      "cup)))");
+  test::CliResult run = test::runCli(dir, "solve " + domain + " " + unknown + " " + scene);
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_EQ(test::lineCount(run.err), 1U) << run.err;
+  EXPECT_PRED_FORMAT2(::testing::IsSubstring, "unknown.pddl: 'cup' (argument 2 of module 'grasp'",
+                      run.err);
+  run = test::runCli(dir, "solve " + domain + " missing.pddl " + scene);
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_EQ(test::lineCount(run.err), 1U) << run.err;
+  run = test::runCli(dir, "solve " + domain + " '" + example("problem.pddl") + "' missing.yaml");
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_PRED_FORMAT2(::testing::IsSubstring, "missing.yaml", run.err);
+  // A goal the geometry cannot reach: the block into a region of the air.
+  const std::string air = dir.write(
+      "air.yaml", test::slurp(example("scene.yaml")) +
+                      "  - name: air\n    region: {box: {min: [0.3, -0.2, 0.5], max: [0.4, "
+                      "-0.1, 0.6]}}\n");
+  const std::string intoAir = dir.write(
+      "air.pddl",
+      "(define (problem p) (:domain pick-and-place) (:objects kr5 - robot block - object left "
+      "air - location) (:init (handempty kr5) (at block left) (= (geometry) 0)) (:goal (at block "
+      "air)))");
+  run = test::runCli(
+      dir, "solve " + domain + " " + intoAir + " '" + air + "'" + test::sharedCacheOption());
+  EXPECT_EQ(run.exitCode, 1) << run.err;
+  EXPECT_PRED_FORMAT2(::testing::IsSubstring, "search space is exhausted", run.err);
+  EXPECT_PRED_FORMAT2(::testing::IsSubstring, "putDown(kr5, block, air): no free placement",
+                      run.err);
 }
 
 }  // namespace kaboum::tamp

@@ -288,10 +288,12 @@ TEST(IsOnSupportSurface, StackedOnAnotherObject) {
       at(0.65, 0.30,
          initial.placements[cell().scene().slot(id("box_a"))].pose.translation().z() + 0.0702);
   EXPECT_EQ(geometry.isOnSupportSurface(with(top, onBoxA), top, scratch), onObject("box_a"));
-  const Pose onCan = at(0.65, -0.30, 0.7701 + 0.05 + 0.0302, 0.3);
+  const double canTop =
+      initial.placements[cell().scene().slot(id("can"))].pose.translation().z() + 0.05;
+  const Pose onCan = at(0.65, -0.30, canTop + 0.0302, 0.3);
   EXPECT_EQ(geometry.isOnSupportSurface(with(top, onCan), top, scratch), onObject("can"));
   EXPECT_FALSE(
-      geometry.isOnSupportSurface(with(top, at(0.65, -0.33, 0.7701 + 0.05 + 0.0302)), top, scratch))
+      geometry.isOnSupportSurface(with(top, at(0.65, -0.33, canTop + 0.0302)), top, scratch))
       << "over the can's rim";
 }
 

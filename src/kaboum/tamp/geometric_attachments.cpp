@@ -55,7 +55,7 @@ const char* toString(GeometricStep::Kind kind) {
 }
 
 GeometricAttachments::GeometricAttachments(const World& world, TampOptions options)
-    : world_(&world), options_(std::move(options)) {
+    : world_(&world), options_(std::move(options)), placements_(world), scratch_(world.scratch()) {
   map_.intern(world.initialState());
   const SceneDescription& scene = world.description();
   for (std::size_t r = 0; r < scene.robots.size(); ++r) {
@@ -72,11 +72,18 @@ namespace {
 
 constexpr std::string_view kNotAnArm = "not a robot with a tool nor a tool of the scene";
 constexpr std::string_view kNotAMovableObject = "not a movable object of the scene";
+constexpr std::string_view kNotALocation = "not a location of the scene";
 
 // Each procedure and its number of arguments (robots, objects, locations by name).
 const std::vector<std::pair<std::string, std::size_t>>& signatures() {
-  static const std::vector<std::pair<std::string, std::size_t>> table{
-      {"move", 1}, {"pickUp", 2}, {"isColliding", 0}, {"isReachable", 2}};
+  static const std::vector<std::pair<std::string, std::size_t>> table{{"move", 1},
+                                                                      {"pickUp", 2},
+                                                                      {"putDown", 3},
+                                                                      {"isColliding", 0},
+                                                                      {"isReachable", 2},
+                                                                      {"isInside", 2},
+                                                                      {"isOnSupportSurface", 1},
+                                                                      {"freeSpaceFound", 2}};
   return table;
 }
 
@@ -92,7 +99,7 @@ const std::vector<std::string>& GeometricAttachments::procedureNames() {
 }
 
 bool GeometricAttachments::isGeometricEffect(const std::string& name) {
-  return name == "move" || name == "pickUp";
+  return name == "move" || name == "pickUp" || name == "putDown";
 }
 
 std::size_t GeometricAttachments::arity(const std::string& name) {
@@ -107,16 +114,26 @@ bool GeometricAttachments::namesSceneEntity(const std::string& name) const {
 }
 
 void GeometricAttachments::registerProcedures(symbolic::ProcedureRegistry& registry) {
-  registry.addApplicator("move", [this](const AttachmentArgs& args, std::span<double> writes) {
-    return move(args, writes);
-  });
-  registry.addApplicator("pickUp", [this](const AttachmentArgs& args, std::span<double> writes) {
-    return pickUp(args, writes);
-  });
-  registry.addChecker("isColliding",
-                      [this](const AttachmentArgs& args) { return isColliding(args); });
-  registry.addChecker("isReachable",
-                      [this](const AttachmentArgs& args) { return isReachable(args); });
+  const auto effect = [&](const char* name, bool (GeometricAttachments::*procedure)(
+                                                const AttachmentArgs&, std::span<double>)) {
+    registry.addApplicator(name,
+                           [this, procedure](const AttachmentArgs& args, std::span<double> writes) {
+                             return (this->*procedure)(args, writes);
+                           });
+  };
+  const auto checker = [&](const char* name,
+                           bool (GeometricAttachments::*procedure)(const AttachmentArgs&)) {
+    registry.addChecker(
+        name, [this, procedure](const AttachmentArgs& args) { return (this->*procedure)(args); });
+  };
+  effect("move", &GeometricAttachments::move);
+  effect("pickUp", &GeometricAttachments::pickUp);
+  effect("putDown", &GeometricAttachments::putDown);
+  checker("isColliding", &GeometricAttachments::isColliding);
+  checker("isReachable", &GeometricAttachments::isReachable);
+  checker("isInside", &GeometricAttachments::isInside);
+  checker("isOnSupportSurface", &GeometricAttachments::isOnSupportSurface);
+  checker("freeSpaceFound", &GeometricAttachments::freeSpaceFound);
 }
 
 const ActionGeometry* GeometricAttachments::transition(std::size_t from, std::size_t to) const {
@@ -335,6 +352,124 @@ bool GeometricAttachments::pickUp(const AttachmentArgs& args, std::span<double> 
     if (reason.empty()) return finish(std::move(geometry), reached, writes);
   }
   return fail("pickUp", args, reason);
+}
+
+FreeSpaceOptions GeometricAttachments::placementOptions(std::mt19937_64& rng) const {
+  FreeSpaceOptions options;
+  options.strategy = options_.placementStrategy;
+  options.maxSamples = options_.placementCandidates;
+  options.seed = rng();
+  return options;
+}
+
+// One placement sample of putDown: freeSpaceFound's placement in the location, IK above it
+// (liftHeight), a certified transfer path there, the Cartesian descent, the release, and a
+// Cartesian retreat of approachDistance back along the tool's z axis.
+std::string GeometricAttachments::tryPlacement(const GeometricState& state, const Arm& arm,
+                                               std::size_t object, std::size_t location,
+                                               std::mt19937_64& rng,
+                                               std::vector<GeometricStep>& steps,
+                                               GeometricState& reached) {
+  const FreeSpace found =
+      placements_.freeSpaceFound(state, object, location, placementOptions(rng), scratch_);
+  if (!found.pose) return "no free placement in the location";
+  const RobotState& robot = state.robots[arm.robot];
+  const std::size_t index = static_cast<std::size_t>(
+      std::find(robot.heldObjects.begin(), robot.heldObjects.end(), object) -
+      robot.heldObjects.begin());
+  motion::ToolKinematics& kinematics = tool(arm);
+  const Pose tcpInObject = robot.held[index].inLink.inverse() * kinematics.tcp();
+  const Pose tcpAtPlace = *found.pose * tcpInObject;
+  const Stopwatch ik;
+  std::vector<std::vector<double>> above = kinematics.solutions(
+      translated(Vec3(0, 0, options_.liftHeight), tcpAtPlace), robot.configuration);
+  ++statistics_.ikCalls;
+  statistics_.ikSeconds += ik.seconds();
+  if (above.empty()) return "no IK solution above the placement";
+  options_.motion.seed = rng();
+  motion::MotionResult transfer = plan(state, arm, above.front());
+  if (transfer.status != PlannerStatus::Solved) return "transfer: " + transfer.message;
+  GeometricState atPlace = state;
+  atPlace.robots[arm.robot].configuration = above.front();
+  motion::MotionResult descent = line(atPlace, arm, tcpAtPlace);
+  if (descent.status != PlannerStatus::Solved) return "descent: " + descent.message;
+  atPlace.robots[arm.robot].configuration = descent.path.back();
+  const Pose placed = world_->release(atPlace, arm.robot, object);
+  motion::MotionResult retreat = line(atPlace, arm,
+                                      kinematics.tcpPose(descent.path.back()) *
+                                          Eigen::Translation3d(0, 0, -options_.approachDistance));
+  if (retreat.status != PlannerStatus::Solved) return "retreat: " + retreat.message;
+  reached = std::move(atPlace);
+  reached.robots[arm.robot].configuration = retreat.path.back();
+  steps.push_back({GeometricStep::Kind::Transfer, arm.robot, arm.tool, std::move(transfer.path), 0,
+                   Pose::Identity()});
+  steps.push_back({GeometricStep::Kind::Approach, arm.robot, arm.tool, std::move(descent.path), 0,
+                   Pose::Identity()});
+  steps.push_back({GeometricStep::Kind::Release, arm.robot, arm.tool, {}, object, placed});
+  steps.push_back({GeometricStep::Kind::Retreat, arm.robot, arm.tool, std::move(retreat.path), 0,
+                   Pose::Identity()});
+  return {};
+}
+
+// putDown(robot, object, location): up to placementSamples placements (tryPlacement); the first
+// that works.
+bool GeometricAttachments::putDown(const AttachmentArgs& args, std::span<double> writes) {
+  ++statistics_.calls;
+  const GeometricState& state = stateOf(args, "putDown");
+  const std::optional<Arm> placing = arm(args, 0);
+  const std::optional<std::size_t> target = object(args, 1);
+  const std::optional<std::size_t> where = location(args, 2);
+  if (!placing) return fail("putDown", args, kNotAnArm);
+  if (!target) return fail("putDown", args, kNotAMovableObject);
+  if (!where) return fail("putDown", args, kNotALocation);
+  const std::vector<std::size_t>& held = state.robots[placing->robot].heldObjects;
+  if (std::find(held.begin(), held.end(), *target) == held.end()) {
+    return fail("putDown", args, "the robot does not hold the object");
+  }
+  std::mt19937_64 rng = generator("putDown", args);
+  std::string reason = "no samples";
+  for (int sample = 0; sample < options_.placementSamples; ++sample) {
+    ActionGeometry geometry{
+        "putDown",
+        {std::string(args.name(0)), std::string(args.name(1)), std::string(args.name(2))},
+        *map_.find(state),
+        0,
+        {}};
+    GeometricState reached;
+    reason = tryPlacement(state, *placing, *target, *where, rng, geometry.steps, reached);
+    if (reason.empty()) return finish(std::move(geometry), reached, writes);
+  }
+  return fail("putDown", args, reason);
+}
+
+// isInside(object, location): every vertex of the object's pieces in the location's region.
+bool GeometricAttachments::isInside(const AttachmentArgs& args) {
+  ++statistics_.calls;
+  const GeometricState& state = stateOf(args, "isInside");
+  const std::optional<std::size_t> target = object(args, 0);
+  const std::optional<std::size_t> where = location(args, 1);
+  return target && where && placements_.isInside(state, *target, *where);
+}
+
+// isOnSupportSurface(object): the object rests on another object or a support-surface location.
+bool GeometricAttachments::isOnSupportSurface(const AttachmentArgs& args) {
+  ++statistics_.calls;
+  const GeometricState& state = stateOf(args, "isOnSupportSurface");
+  const std::optional<std::size_t> target = object(args, 0);
+  return target && placements_.isOnSupportSurface(state, *target, scratch_).has_value();
+}
+
+// freeSpaceFound(object, location): the location has room for the object (seed 003's suggester,
+// sampled as putDown samples it).
+bool GeometricAttachments::freeSpaceFound(const AttachmentArgs& args) {
+  ++statistics_.calls;
+  const GeometricState& state = stateOf(args, "freeSpaceFound");
+  const std::optional<std::size_t> target = object(args, 0);
+  const std::optional<std::size_t> where = location(args, 1);
+  if (!target || !where) return false;
+  std::mt19937_64 rng = generator("freeSpaceFound", args);
+  return placements_.freeSpaceFound(state, *target, *where, placementOptions(rng), scratch_)
+      .pose.has_value();
 }
 
 // isReachable(robot, object): some grasp of the object at its pose has an IK solution at which

@@ -21,14 +21,20 @@
 #include "kaboum/symbolic/attachments.hpp"
 #include "kaboum/tamp/grasp_sampler.hpp"
 #include "kaboum/tamp/state_map.hpp"
+#include "kaboum/world/placement.hpp"
 
 namespace kaboum::tamp {
 
 struct TampOptions {
   // Every motion query (transit, transfer, approach, retreat): planner, time limit, seed.
   motion::MotionOptions motion;
-  int graspSamples = 16;  // grasps tried per pickUp call
-  int moveSamples = 8;    // random configurations tried per move call
+  int graspSamples = 16;      // grasps tried per pickUp call
+  int placementSamples = 16;  // placements tried per putDown call
+  // How freeSpaceFound samples a location's footprint for putDown and the freeSpaceFound checker
+  // (seeded per call with the call's generator); the samples it may try per placement.
+  SearchStrategy placementStrategy = SearchStrategy::Random;
+  std::size_t placementCandidates = 200;
+  int moveSamples = 8;  // random configurations tried per move call
   // Metres: the pre-grasp pose is this far back along the tool's z axis (its approach axis) from
   // the grasp, and the hand backs off as far after a release.
   double approachDistance = 0.05;
@@ -86,9 +92,10 @@ class GeometricAttachments {
 
   // Registers every procedure under its name (procedureNames()).
   void registerProcedures(symbolic::ProcedureRegistry& registry);
-  // Effects: move(robot), pickUp(robot, object); checkers:
-  // isColliding(), isReachable(robot, object). A robot argument names a scene robot (its first
-  // tool) or a tool.
+  // Effects: move(robot), pickUp(robot, object), putDown(robot, object, location); checkers:
+  // isColliding(), isReachable(robot, object), isInside(object, location),
+  // isOnSupportSurface(object), freeSpaceFound(object, location). A robot argument names a scene
+  // robot (its first tool) or a tool.
   static const std::vector<std::string>& procedureNames();
   // Whether procedure `name` is an effect that writes a geometric state identifier.
   static bool isGeometricEffect(const std::string& name);
@@ -114,6 +121,10 @@ class GeometricAttachments {
 
   bool move(const symbolic::AttachmentArgs& args, std::span<double> writes);
   bool pickUp(const symbolic::AttachmentArgs& args, std::span<double> writes);
+  bool putDown(const symbolic::AttachmentArgs& args, std::span<double> writes);
+  bool isInside(const symbolic::AttachmentArgs& args);
+  bool isOnSupportSurface(const symbolic::AttachmentArgs& args);
+  bool freeSpaceFound(const symbolic::AttachmentArgs& args);
   bool isReachable(const symbolic::AttachmentArgs& args);
   bool isColliding(const symbolic::AttachmentArgs& args);
 
@@ -141,6 +152,11 @@ class GeometricAttachments {
   std::string tryGrasp(const GeometricState& state, const Arm& arm, std::size_t object,
                        std::mt19937_64& rng, std::vector<GeometricStep>& steps,
                        GeometricState& reached);
+  // One placement sample of putDown for the object `held` holds as `index`-th held object.
+  std::string tryPlacement(const GeometricState& state, const Arm& arm, std::size_t object,
+                           std::size_t location, std::mt19937_64& rng,
+                           std::vector<GeometricStep>& steps, GeometricState& reached);
+  [[nodiscard]] FreeSpaceOptions placementOptions(std::mt19937_64& rng) const;
   // Records the geometry and writes the new state's identifier.
   bool finish(ActionGeometry geometry, const GeometricState& reached, std::span<double> writes);
   // Counts a failed call of `procedure` and keeps `reason` as the last failure.
@@ -150,6 +166,8 @@ class GeometricAttachments {
   const World* world_;
   TampOptions options_;
   GeometricStateMap map_;
+  PlacementGeometry placements_;
+  QueryScratch scratch_;
   std::map<std::pair<std::size_t, std::size_t>, ActionGeometry> transitions_;
   std::map<std::pair<std::size_t, std::size_t>, std::unique_ptr<motion::ToolKinematics>> tools_;
   std::unordered_map<std::string, Arm> arms_;  // lower-case robot and tool names

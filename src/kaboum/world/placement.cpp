@@ -17,9 +17,8 @@ namespace kaboum::world {
 
 namespace {
 
-// How far above the highest support hit freeSpaceFound puts an object's pieces (metres): apart,
-// so that the collision check at distance 0 finds them free, as the World's first resting lift.
-constexpr double kRestingGap = 1e-4;
+// The resolution (metres) of the bisection that finds the lowest free height of a placement.
+constexpr double kBisectionStep = 1e-4;
 
 const Vec3 kUp{0, 0, 1};
 
@@ -276,7 +275,7 @@ PlacementGeometry::PlacementGeometry(const World& world) : world_(world) {
 SupportTolerance PlacementGeometry::supportTolerance(std::size_t object) const {
   const BodyEpsilon& epsilon = world_.objectEpsilon().at(object);
   const double own = std::max(epsilon.asked, epsilon.reached);
-  return {own, 2 * own + largestEpsilon_ + kRestingGap};
+  return {own, 2 * own + largestEpsilon_ + world_.restingGap() + kBisectionStep};
 }
 
 std::optional<Pose> PlacementGeometry::poseIn(const GeometricState& state,
@@ -426,24 +425,25 @@ FreeSpace PlacementGeometry::freeSpaceFound(const GeometricState& state, std::si
     }
     return plane;
   };
-  // The face down at `position` turned by `yaw`, its pieces kRestingGap above `plane`; where
-  // that collides (a support between the raycast's columns), the lowest height found free by
-  // bisection to kRestingGap between there and the face on the region's top (nullopt when that
-  // collides too).
+  // The face down at `position` turned by `yaw`, its pieces the World's resting gap above
+  // `plane`; where that collides (a support between the raycast's columns), the resting gap above
+  // the lowest height found free by bisection to kBisectionStep between there and the face on the
+  // region's top (nullopt when that collides too).
   const auto settled = [&](const RestingFace& face, const Vec3& position, double yaw,
                            double plane) -> std::optional<Pose> {
     const auto posed = [&](double height) {
       return restingPose(face, position.x(), position.y(), height, yaw);
     };
-    double below = plane + kRestingGap;
+    const double gap = world_.restingGap();
+    double below = plane + gap;
     if (!collides(state, scratch, object, posed(below))) return posed(below);
     double above = std::max(below, where.top);
     if (collides(state, scratch, object, posed(above))) return std::nullopt;
-    while (above - below > kRestingGap) {
+    while (above - below > kBisectionStep) {
       const double middle = 0.5 * (above + below);
       (collides(state, scratch, object, posed(middle)) ? below : above) = middle;
     }
-    return posed(above);
+    return posed(above + gap);
   };
   FreeSpace result;
   for (; result.samples < options.maxSamples; ++result.samples) {

@@ -98,11 +98,11 @@ class PlacementGeometry {
   [[nodiscard]] std::span<const RestingFace> restingFaces(std::size_t object) const {
     return objects_.at(object).faces;
   }
-  // The probes of object `object`: band = ε_o, drop = 2 ε_o + ε_max + 0.1 mm, where ε_o is the
-  // object's ε (the larger of asked and reached, World::objectEpsilon) and ε_max the largest of
-  // the scene's objects. An object resting on another, its pieces apart by at most both bodies' ε
-  // + 0.1 mm (as the World raises resting objects at load, and placements found here lie), reaches
-  // it from every vertex in the band.
+  // The probes of object `object`: band = ε_o, drop = 2 ε_o + ε_max + g + 0.1 mm, where ε_o is
+  // the object's ε (the larger of asked and reached, World::objectEpsilon), ε_max the largest of
+  // the scene's objects and g the World's resting gap. An object resting on another, its pieces
+  // apart by at most both bodies' ε + g + 0.1 mm (as the World raises resting objects at load, and
+  // placements found here lie), reaches it from every vertex in the band.
   [[nodiscard]] SupportTolerance supportTolerance(std::size_t object) const;
 
   // Seed 003's isInside(object, location): every vertex of the object's pieces inside the
@@ -132,10 +132,10 @@ class PlacementGeometry {
   // location's footprint by `options.strategy`; at each, for every resting face and yaw, a
   // downward raycast from the region's top under the face's bottom vertices onto the supports
   // (present objects' pieces, support-surface locations' bottoms) gives the height, the pieces
-  // 0.1 mm above the highest support hit; the first pose that is inside the location
-  // (isInside), collision-free against every other object and every robot (the object's own
-  // placement or hold in `state` ignored) and on a support (isOnSupportSurface) is returned. Never
-  // a colliding placement; deterministic for the options. Throws std::invalid_argument for a
+  // the World's resting gap above the highest support hit; the first pose that is inside the
+  // location (isInside), collision-free against every other object and every robot (the object's
+  // own placement or hold in `state` ignored) and on a support (isOnSupportSurface) is returned.
+  // Never a colliding placement; deterministic for the options. Throws std::invalid_argument for a
   // static object or a location out of range.
   [[nodiscard]] FreeSpace freeSpaceFound(const GeometricState& state, std::size_t object,
                                          std::size_t location, const FreeSpaceOptions& options,

@@ -1,0 +1,5 @@
+(define (problem pick-block)
+  (:domain pick-and-place)
+  (:objects kr5 - robot block - object left right - location)
+  (:init (handempty kr5) (at block left) (= (geometry) 0))
+  (:goal (holding kr5 block)))
