@@ -56,8 +56,11 @@ void printSummary(const tamp::SolveResult& result) {
     std::cerr << "\n";
   }
   if (!result.message.empty()) std::cerr << "kaboum solve: " << result.message << "\n";
-  if (result.status != PlannerStatus::Solved && !geometric.lastFailure.empty()) {
-    std::cerr << "kaboum solve: last geometric failure: " << geometric.lastFailure << "\n";
+  if (result.status != PlannerStatus::Solved && !geometric.recentFailures.empty()) {
+    std::cerr << "kaboum solve: the latest geometric failures:\n";
+    for (const std::string& failure : geometric.recentFailures) {
+      std::cerr << "  " << failure << "\n";
+    }
   }
 }
 
@@ -105,8 +108,13 @@ VerbRunner setup(CLI::App& command) {
                   "Heuristic of gbfs and astar, evaluated in every world (maximum)")
       ->check(CLI::IsMember(symbolic::heuristicNames()))
       ->capture_default_str();
-  command.add_option("--time-limit", options->solve.search.limits.seconds, "Search time limit (s)")
-      ->check(CLI::PositiveNumber);
+  options->solve.search.limits.seconds = 60;
+  command
+      .add_option("--time-limit", options->solve.search.limits.seconds,
+                  "Search time limit (s): geometric state spaces are unbounded (every move or "
+                  "placement may lead to a new state)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   command
       .add_option("--node-limit", options->solve.search.limits.expansions,
                   "Maximum number of expanded knowledge states")

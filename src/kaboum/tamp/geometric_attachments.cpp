@@ -99,7 +99,7 @@ const std::vector<std::string>& GeometricAttachments::procedureNames() {
 }
 
 bool GeometricAttachments::isGeometricEffect(const std::string& name) {
-  return name == "move" || name == "pickUp" || name == "putDown";
+  return name == "move" || name == "moveHome" || name == "pickUp" || name == "putDown";
 }
 
 std::size_t GeometricAttachments::arity(const std::string& name) {
@@ -127,6 +127,7 @@ void GeometricAttachments::registerProcedures(symbolic::ProcedureRegistry& regis
         name, [this, procedure](const AttachmentArgs& args) { return (this->*procedure)(args); });
   };
   effect("move", &GeometricAttachments::move);
+  effect("moveHome", &GeometricAttachments::moveHome);
   effect("pickUp", &GeometricAttachments::pickUp);
   effect("putDown", &GeometricAttachments::putDown);
   checker("isColliding", &GeometricAttachments::isColliding);
@@ -238,7 +239,9 @@ bool GeometricAttachments::fail(const std::string& procedure, const AttachmentAr
   for (std::size_t i = 0; i < args.objects.size(); ++i) {
     call += (i ? ", " : "") + std::string(args.name(i));
   }
-  statistics_.lastFailure = call + "): " + std::string(reason);
+  std::vector<std::string>& recent = statistics_.recentFailures;
+  if (recent.size() == GeometricStatistics::kRecentFailures) recent.erase(recent.begin());
+  recent.push_back(call + "): " + std::string(reason));
   return false;
 }
 
@@ -272,6 +275,30 @@ bool GeometricAttachments::move(const AttachmentArgs& args, std::span<double> wr
   return fail("move", args, reason);
 }
 
+// moveHome(robot): a certified path to the robot's home configuration (the scene file's), where
+// it is out of the other robots' way; fails when it is there already.
+bool GeometricAttachments::moveHome(const AttachmentArgs& args, std::span<double> writes) {
+  ++statistics_.calls;
+  const GeometricState& state = stateOf(args, "moveHome");
+  const std::optional<Arm> found = arm(args, 0);
+  if (!found) return fail("moveHome", args, kNotAnArm);
+  const std::vector<double>& home = world_->robots()[found->robot].home;
+  if (state.robots[found->robot].configuration == home) {
+    return fail("moveHome", args, "the robot is at home");
+  }
+  std::mt19937_64 rng = generator("moveHome", args);
+  options_.motion.seed = rng();
+  motion::MotionResult path = plan(state, *found, home);
+  if (path.status != PlannerStatus::Solved) return fail("moveHome", args, "path: " + path.message);
+  GeometricState reached = state;
+  reached.robots[found->robot].configuration = home;
+  ActionGeometry geometry{"moveHome", {std::string(args.name(0))}, *map_.find(state), 0, {}};
+  const bool holding = !state.robots[found->robot].heldObjects.empty();
+  geometry.steps.push_back({holding ? GeometricStep::Kind::Transfer : GeometricStep::Kind::Transit,
+                            found->robot, found->tool, std::move(path.path), 0, Pose::Identity()});
+  return finish(std::move(geometry), reached, writes);
+}
+
 int GeometricAttachments::toolLink(const Arm& arm) const {
   return world_->robots()[arm.robot]
       .collision.model()
@@ -290,18 +317,27 @@ std::string GeometricAttachments::tryGrasp(const GeometricState& state, const Ar
   GraspSampler sampler(*world_, kinematics);
   const Pose objectPose = state.placements[world_->scene().slot(object)].pose;
   const Stopwatch ik;
-  const std::optional<GraspCandidate> grasp =
+  const std::vector<GraspCandidate> grasps =
       sampler.sample(object, objectPose, state.robots[arm.robot].configuration, rng);
+  // The first IK solution of the sample whose pre-grasp is reachable on its branch and free.
+  const motion::MotionGroup group(*world_, state, {arm.robot});
   std::optional<std::vector<double>> preGrasp;
-  const Pose tcpAtGrasp = objectPose * (grasp ? grasp->tcpInObject : Pose::Identity());
-  if (grasp) {
-    const Pose tcpBefore = tcpAtGrasp * Eigen::Translation3d(0, 0, -options_.approachDistance);
-    preGrasp = kinematics.solveNear(tcpBefore, grasp->configuration);
+  Pose tcpAtGrasp = Pose::Identity();
+  std::string reason =
+      grasps.empty() ? "no IK solution for the grasp sample" : "no IK solution for the pre-grasp";
+  for (const GraspCandidate& grasp : grasps) {
+    tcpAtGrasp = objectPose * grasp.tcpInObject;
+    preGrasp = kinematics.solveNear(
+        tcpAtGrasp * Eigen::Translation3d(0, 0, -options_.approachDistance), grasp.configuration);
+    if (!preGrasp) continue;
+    const std::optional<std::string> problem = motion::configurationProblem(group, *preGrasp, 0);
+    if (!problem) break;
+    reason = "pre-grasp: " + *problem;
+    preGrasp.reset();
   }
   ++statistics_.ikCalls;
   statistics_.ikSeconds += ik.seconds();
-  if (!grasp) return "no IK solution for the grasp sample";
-  if (!preGrasp) return "no IK solution for the pre-grasp";
+  if (!preGrasp) return reason;
   options_.motion.seed = rng();
   motion::MotionResult transit = plan(state, arm, *preGrasp);
   if (transit.status != PlannerStatus::Solved) return "transit: " + transit.message;
@@ -362,6 +398,23 @@ FreeSpaceOptions GeometricAttachments::placementOptions(std::mt19937_64& rng) co
   return options;
 }
 
+// The resting faces of `object` that leave the tool's z axis (its approach) at most 30° above
+// horizontal when the object held at `tcpInObject` rests on them, the most downward first: an
+// upside-down bottle held from above is no placement an arm reaches from above.
+std::vector<std::size_t> GeometricAttachments::facesForGrasp(std::size_t object,
+                                                             const Pose& tcpInObject) const {
+  const std::span<const RestingFace> faces = placements_.restingFaces(object);
+  std::vector<std::pair<double, std::size_t>> upward;
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const double z = (faces[f].down * tcpInObject.rotation().col(2)).z();
+    if (z <= 0.5) upward.emplace_back(z, f);
+  }
+  std::sort(upward.begin(), upward.end());
+  std::vector<std::size_t> order;
+  for (const auto& entry : upward) order.push_back(entry.second);
+  return order;
+}
+
 // One placement sample of putDown: freeSpaceFound's placement in the location, IK above it
 // (liftHeight), a certified transfer path there, the Cartesian descent, the release, and a
 // Cartesian retreat of approachDistance back along the tool's z axis.
@@ -370,15 +423,17 @@ std::string GeometricAttachments::tryPlacement(const GeometricState& state, cons
                                                std::mt19937_64& rng,
                                                std::vector<GeometricStep>& steps,
                                                GeometricState& reached) {
-  const FreeSpace found =
-      placements_.freeSpaceFound(state, object, location, placementOptions(rng), scratch_);
-  if (!found.pose) return "no free placement in the location";
   const RobotState& robot = state.robots[arm.robot];
   const std::size_t index = static_cast<std::size_t>(
       std::find(robot.heldObjects.begin(), robot.heldObjects.end(), object) -
       robot.heldObjects.begin());
   motion::ToolKinematics& kinematics = tool(arm);
   const Pose tcpInObject = robot.held[index].inLink.inverse() * kinematics.tcp();
+  FreeSpaceOptions options = placementOptions(rng);
+  options.faces = facesForGrasp(object, tcpInObject);
+  if (options.faces.empty()) return "no resting face leaves the grasp reachable from above";
+  const FreeSpace found = placements_.freeSpaceFound(state, object, location, options, scratch_);
+  if (!found.pose) return "no free placement in the location";
   const Pose tcpAtPlace = *found.pose * tcpInObject;
   const Stopwatch ik;
   std::vector<std::vector<double>> above = kinematics.solutions(
@@ -386,11 +441,18 @@ std::string GeometricAttachments::tryPlacement(const GeometricState& state, cons
   ++statistics_.ikCalls;
   statistics_.ikSeconds += ik.seconds();
   if (above.empty()) return "no IK solution above the placement";
+  const motion::MotionGroup group(*world_, state, {arm.robot});
+  const auto free = std::find_if(above.begin(), above.end(), [&](const std::vector<double>& q) {
+    return !motion::configurationProblem(group, q, 0);
+  });
+  if (free == above.end()) {
+    return "above the placement: " + *motion::configurationProblem(group, above.front(), 0);
+  }
   options_.motion.seed = rng();
-  motion::MotionResult transfer = plan(state, arm, above.front());
+  motion::MotionResult transfer = plan(state, arm, *free);
   if (transfer.status != PlannerStatus::Solved) return "transfer: " + transfer.message;
   GeometricState atPlace = state;
-  atPlace.robots[arm.robot].configuration = above.front();
+  atPlace.robots[arm.robot].configuration = *free;
   motion::MotionResult descent = line(atPlace, arm, tcpAtPlace);
   if (descent.status != PlannerStatus::Solved) return "descent: " + descent.message;
   atPlace.robots[arm.robot].configuration = descent.path.back();
@@ -488,11 +550,13 @@ bool GeometricAttachments::isReachable(const AttachmentArgs& args) {
   for (int sample = 0; placement.present && sample < options_.graspSamples && !reachable;
        ++sample) {
     const Stopwatch ik;
-    const std::optional<GraspCandidate> grasp =
+    const std::vector<GraspCandidate> grasps =
         sampler.sample(*target, placement.pose, state.robots[reaching->robot].configuration, rng);
     ++statistics_.ikCalls;
     statistics_.ikSeconds += ik.seconds();
-    reachable = grasp && !motion::configurationProblem(group, grasp->configuration, 0);
+    reachable = std::any_of(grasps.begin(), grasps.end(), [&](const GraspCandidate& grasp) {
+      return !motion::configurationProblem(group, grasp.configuration, 0);
+    });
   }
   return reachable;
 }

@@ -77,8 +77,10 @@ struct GeometricStatistics {
   std::size_t motionQueries = 0;  // planMotion and planCartesian queries
   double motionSeconds = 0;       // in those queries, their checks included
   motion::CheckStatistics checks;
-  // The last failed call and why its last sample failed: "pickUp(kr5, block): approach: …".
-  std::string lastFailure;
+  // The latest failed calls (at most kRecentFailures, oldest first) and why each one's last sample
+  // failed: "pickUp(kr5, block): approach: …".
+  static constexpr std::size_t kRecentFailures = 8;
+  std::vector<std::string> recentFailures;
 };
 
 class GeometricAttachments {
@@ -92,7 +94,8 @@ class GeometricAttachments {
 
   // Registers every procedure under its name (procedureNames()).
   void registerProcedures(symbolic::ProcedureRegistry& registry);
-  // Effects: move(robot), pickUp(robot, object), putDown(robot, object, location); checkers:
+  // Effects: move(robot), moveHome(robot), pickUp(robot, object), putDown(robot, object,
+  // location); checkers:
   // isColliding(), isReachable(robot, object), isInside(object, location),
   // isOnSupportSurface(object), freeSpaceFound(object, location). A robot argument names a scene
   // robot (its first tool) or a tool.
@@ -103,7 +106,7 @@ class GeometricAttachments {
   static std::size_t arity(const std::string& name);
   // Whether `name` names a robot, tool, object or location of the scene. An argument of the wrong
   // kind (a robot where an object is expected, as PDDL's root type `object` allows) makes the call
-  // fail, with the reason in statistics().lastFailure.
+  // fail, with the reason in statistics().recentFailures.
   [[nodiscard]] bool namesSceneEntity(const std::string& name) const;
 
   [[nodiscard]] const World& world() const { return *world_; }
@@ -120,6 +123,7 @@ class GeometricAttachments {
   };
 
   bool move(const symbolic::AttachmentArgs& args, std::span<double> writes);
+  bool moveHome(const symbolic::AttachmentArgs& args, std::span<double> writes);
   bool pickUp(const symbolic::AttachmentArgs& args, std::span<double> writes);
   bool putDown(const symbolic::AttachmentArgs& args, std::span<double> writes);
   bool isInside(const symbolic::AttachmentArgs& args);
@@ -157,6 +161,8 @@ class GeometricAttachments {
                            std::size_t location, std::mt19937_64& rng,
                            std::vector<GeometricStep>& steps, GeometricState& reached);
   [[nodiscard]] FreeSpaceOptions placementOptions(std::mt19937_64& rng) const;
+  [[nodiscard]] std::vector<std::size_t> facesForGrasp(std::size_t object,
+                                                       const Pose& tcpInObject) const;
   // Records the geometry and writes the new state's identifier.
   bool finish(ActionGeometry geometry, const GeometricState& reached, std::span<double> writes);
   // Counts a failed call of `procedure` and keeps `reason` as the last failure.

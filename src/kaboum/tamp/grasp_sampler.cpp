@@ -37,14 +37,14 @@ Pose freeMotion(const FreeMotion& motion, double value) {
 GraspSampler::GraspSampler(const World& world, motion::ToolKinematics& tool)
     : world_(&world), tool_(&tool) {}
 
-std::optional<GraspCandidate> GraspSampler::sample(std::size_t object, const Pose& objectPose,
-                                                   std::span<const double> near,
-                                                   std::mt19937_64& rng) {
+std::vector<GraspCandidate> GraspSampler::sample(std::size_t object, const Pose& objectPose,
+                                                 std::span<const double> near,
+                                                 std::mt19937_64& rng) {
   const std::vector<GraspSpec>& grasps = world_->description().objects.at(object).grasps;
-  if (grasps.empty()) return std::nullopt;
+  if (grasps.empty()) return {};
   const std::size_t index = rng() % grasps.size();
-  std::optional<GraspCandidate> found = std::visit(
-      [&](const auto& definition) -> std::optional<GraspCandidate> {
+  std::vector<GraspCandidate> found = std::visit(
+      [&](const auto& definition) -> std::vector<GraspCandidate> {
         if constexpr (std::is_same_v<std::decay_t<decltype(definition)>, GraspPose>) {
           return samplePose(definition, objectPose, near, rng);
         } else {
@@ -52,14 +52,14 @@ std::optional<GraspCandidate> GraspSampler::sample(std::size_t object, const Pos
         }
       },
       grasps[index].definition);
-  if (found) found->grasp = index;
+  for (GraspCandidate& candidate : found) candidate.grasp = index;
   return found;
 }
 
 // Algorithm 3 over the arm's chain: F(q) stacks the Table 5.1 costs of the hand's features (on
 // the tool centre point) against the object's (at its pose); a random start is projected onto
 // F(q) = 0 within the joint limits.
-std::optional<GraspCandidate> GraspSampler::sampleConstraints(
+std::vector<GraspCandidate> GraspSampler::sampleConstraints(
     const std::vector<GraspConstraint>& constraints, const Pose& objectPose,
     std::span<const double> near, std::mt19937_64& rng) {
   ConstraintProblem problem;
@@ -78,30 +78,28 @@ std::optional<GraspCandidate> GraspSampler::sampleConstraints(
   options.maxAttempts = 1;
   ConstraintSampler sampler(problem, options);
   std::vector<double> chainValues(static_cast<std::size_t>(problem.dof()));
-  if (!sampler.sample(chainValues)) return std::nullopt;
+  if (!sampler.sample(chainValues)) return {};
   GraspCandidate candidate;
   candidate.configuration = tool_->withChainValues(near, chainValues);
   candidate.tcpInObject = objectPose.inverse() * tool_->tcpPose(candidate.configuration);
-  return candidate;
+  return {std::move(candidate)};
 }
 
-// The grasp pose moved by each free motion by a uniform value of its range, then IK: the
-// solution nearest `near`.
-std::optional<GraspCandidate> GraspSampler::samplePose(const GraspPose& grasp,
-                                                       const Pose& objectPose,
-                                                       std::span<const double> near,
-                                                       std::mt19937_64& rng) {
+// The grasp pose moved by each free motion by a uniform value of its range, then IK: every
+// solution, nearest `near` first.
+std::vector<GraspCandidate> GraspSampler::samplePose(const GraspPose& grasp, const Pose& objectPose,
+                                                     std::span<const double> near,
+                                                     std::mt19937_64& rng) {
   Pose motion = Pose::Identity();
   for (const FreeMotion& free : grasp.free) {
     motion = motion * freeMotion(free, free.lower + uniformUnit(rng) * (free.upper - free.lower));
   }
   const Pose tcpInObject = motion * grasp.tcp;
-  std::vector<std::vector<double>> solutions = tool_->solutions(objectPose * tcpInObject, near);
-  if (solutions.empty()) return std::nullopt;
-  GraspCandidate candidate;
-  candidate.configuration = std::move(solutions.front());
-  candidate.tcpInObject = tcpInObject;
-  return candidate;
+  std::vector<GraspCandidate> candidates;
+  for (std::vector<double>& solution : tool_->solutions(objectPose * tcpInObject, near)) {
+    candidates.push_back({std::move(solution), tcpInObject, 0});
+  }
+  return candidates;
 }
 
 }  // namespace kaboum::tamp

@@ -30,19 +30,20 @@ class GraspSampler {
   GraspSampler(const World& world, motion::ToolKinematics& tool);
 
   // One sample: a grasp of scene object `object` at `objectPose` chosen at random among its
-  // grasps, its free parameters random, solved for a configuration near `near` (the other joints
-  // of the robot keep their values from `near`); nullopt when the sample has no solution within
-  // the joint limits. Deterministic for the generator's state. Collisions are the caller's.
-  std::optional<GraspCandidate> sample(std::size_t object, const Pose& objectPose,
-                                       std::span<const double> near, std::mt19937_64& rng);
+  // grasps, its free parameters random, and the configurations that reach it (the other joints of
+  // the robot keep their values from `near`): every IK solution of an explicit grasp pose nearest
+  // `near` first, or the one projection of a constrained grasp; empty when the sample has no
+  // solution within the joint limits. Deterministic for the generator's state. Collisions are the
+  // caller's.
+  std::vector<GraspCandidate> sample(std::size_t object, const Pose& objectPose,
+                                     std::span<const double> near, std::mt19937_64& rng);
 
  private:
-  std::optional<GraspCandidate> sampleConstraints(const std::vector<GraspConstraint>& constraints,
-                                                  const Pose& objectPose,
-                                                  std::span<const double> near,
-                                                  std::mt19937_64& rng);
-  std::optional<GraspCandidate> samplePose(const GraspPose& grasp, const Pose& objectPose,
-                                           std::span<const double> near, std::mt19937_64& rng);
+  std::vector<GraspCandidate> sampleConstraints(const std::vector<GraspConstraint>& constraints,
+                                                const Pose& objectPose,
+                                                std::span<const double> near, std::mt19937_64& rng);
+  std::vector<GraspCandidate> samplePose(const GraspPose& grasp, const Pose& objectPose,
+                                         std::span<const double> near, std::mt19937_64& rng);
 
   const World* world_;
   motion::ToolKinematics* tool_;

@@ -451,7 +451,13 @@ FreeSpace PlacementGeometry::freeSpaceFound(const GeometricState& state, std::si
     if (!sample) break;
     const Vec3 position =
         where.frame * Vec3(where.lower.x() + (*sample)[0], where.lower.y() + (*sample)[1], 0);
-    for (std::size_t f = 0; f < faces.size(); ++f) {
+    const std::size_t faceCount = options.faces.empty() ? faces.size() : options.faces.size();
+    for (std::size_t i = 0; i < faceCount; ++i) {
+      const std::size_t f = options.faces.empty() ? i : options.faces[i];
+      if (f >= faces.size()) {
+        throw std::invalid_argument("object '" + world_.scene().name(object) + "' has no face " +
+                                    std::to_string(f));
+      }
       for (std::size_t k = 0; k < options.yawCount; ++k) {
         const double yaw =
             frameYaw + (*sample)[2] +

@@ -65,6 +65,9 @@ struct FreeSpaceOptions {
   // (k < yawCount; offset 0, or uniform for Random).
   std::size_t yawCount = 4;
   std::uint64_t seed = 1;  // Random
+  // The resting faces tried (indices into restingFaces(object)), in this order; empty: all of
+  // them, largest first. A caller holding the object passes those its grasp can reach.
+  std::vector<std::size_t> faces;
 };
 
 // freeSpaceFound's answer: the pose (nullopt when no sample gave one), the support it rests on and

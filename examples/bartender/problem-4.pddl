@@ -1,0 +1,15 @@
+; Figure 6.2's instance: four bottles of unknown content, o1 and o3 on robot1's side, o2 and o4 on
+; robot2's side. Goal of Table 6.1: every empty bottle in the dishwasher and not grasped.
+(define (problem bartender-4)
+  (:domain bartender)
+  (:objects o1 o2 o3 o4 - bottle robot1 robot2 - robot left shared right dishwasher - location)
+  (:init (ishandempty robot1) (ishandempty robot2)
+         (isatlocation o1 left) (isatlocation o3 left)
+         (isatlocation o2 right) (isatlocation o4 right)
+         (unknown (isemptybottle o1)) (unknown (isemptybottle o2))
+         (unknown (isemptybottle o3)) (unknown (isemptybottle o4))
+         (= (geometry) 0))
+  (:goal (forall (?o - bottle)
+           (or (and (isatlocation ?o dishwasher) (not (isgrasped ?o)) (isemptybottle ?o))
+               (and (not (isemptybottle ?o))
+                    (or (not (isatlocation ?o dishwasher)) (isgrasped ?o)))))))
