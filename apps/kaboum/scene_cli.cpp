@@ -1,7 +1,10 @@
 #include "scene_cli.hpp"
 
+#include <cmath>
 #include <cstdlib>
+#include <numbers>
 
+#include "kaboum/core/error.hpp"
 #include "kaboum/io/scene_file.hpp"
 
 namespace kaboum::cli {
@@ -47,6 +50,27 @@ world::World loadWorld(const std::string& sceneFile, const SceneLoadOptions& opt
   worldOptions.cacheDirectory = cacheDirectory(options);
   worldOptions.threads = options.threads;
   return world::World(io::readSceneFile(sceneFile), worldOptions);
+}
+
+void addVerifyStepOptions(CLI::App& command, VerifyStepOptions& options) {
+  command.add_option("--joint-step", options.jointStepDegrees,
+                     "Largest joint motion between samples, degrees (default 0.5)");
+  command.add_option("--tool-step", options.toolStepMillimetres,
+                     "Largest motion of a link origin or tool point between samples, millimetres "
+                     "(default 1)");
+}
+
+verify::VerifyOptions verifyOptions(const VerifyStepOptions& options) {
+  if (!(options.jointStepDegrees > 0) || !std::isfinite(options.jointStepDegrees)) {
+    throw InputError("--joint-step: must be a positive number of degrees");
+  }
+  if (!(options.toolStepMillimetres > 0) || !std::isfinite(options.toolStepMillimetres)) {
+    throw InputError("--tool-step: must be a positive number of millimetres");
+  }
+  verify::VerifyOptions verify;
+  verify.jointStep = options.jointStepDegrees * std::numbers::pi / 180;
+  verify.toolStep = options.toolStepMillimetres / 1000;
+  return verify;
 }
 
 }  // namespace kaboum::cli

@@ -1,6 +1,6 @@
-// Loading a scene file's World for the verbs that read scenes (scene, motion, verify-path): the
-// options they share (where the decomposition cache of §6.1.1's pre-processing lives) and the
-// reading and building itself.
+// Loading a scene file's World for the verbs that read scenes (scene, motion, verify-path,
+// verify-plan): the options they share (where the decomposition cache of §6.1.1's pre-processing
+// lives) and the reading and building itself; and the sample spacing of the verifying verbs.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "kaboum/verify/path_verifier.hpp"
 #include "kaboum/world/world.hpp"
 
 namespace kaboum::cli {
@@ -33,5 +34,18 @@ std::optional<std::filesystem::path> cacheDirectory(const SceneLoadOptions& opti
 // `options.threads` threads (WorldOptions::threads). Throws
 // InputError for a bad file, a failed load-time check or a cache directory that cannot be created.
 world::World loadWorld(const std::string& sceneFile, const SceneLoadOptions& options);
+
+// How densely verify-path and verify-plan sample a path (docs/verify.md), in the user's units.
+struct VerifyStepOptions {
+  double jointStepDegrees = 0.5;
+  double toolStepMillimetres = 1.0;
+};
+
+// Adds --joint-step DEG and --tool-step MM to `command`.
+void addVerifyStepOptions(CLI::App& command, VerifyStepOptions& options);
+
+// The verifier's steps in radians and metres. Throws InputError for a step that is not a positive
+// number.
+verify::VerifyOptions verifyOptions(const VerifyStepOptions& options);
 
 }  // namespace kaboum::cli

@@ -4,9 +4,7 @@
 // code 0 when collision-free, 1 when a collision is found, 2 on bad input.
 #include <fmt/format.h>
 
-#include <cmath>
 #include <iostream>
-#include <numbers>
 
 #include "kaboum/core/error.hpp"
 #include "kaboum/io/path_file.hpp"
@@ -23,8 +21,7 @@ namespace {
 struct Options {
   std::string scene;
   std::string path;
-  double jointStepDegrees = 0.5;
-  double toolStepMillimetres = 1.0;
+  VerifyStepOptions steps;
   bool json = false;
   bool quiet = false;
   SceneLoadOptions load;
@@ -44,7 +41,8 @@ void printReport(const Options& options, const ScenePath& path, const PathVerifi
   fmt::print("reference:  FCL, {} mesh triangles, built in {:.3f} s\n", geometry.triangleCount(),
              geometry.buildSeconds());
   fmt::print("samples:    {} (joint step {:g} deg, tool step {:g} mm), {} pairs each\n",
-             result.samples, options.jointStepDegrees, options.toolStepMillimetres, result.pairs);
+             result.samples, options.steps.jointStepDegrees, options.steps.toolStepMillimetres,
+             result.pairs);
   if (result.clearance) {
     const Clearance& clearance = *result.clearance;
     fmt::print("clearance:  {:.2f} mm between {} and {}, {}\n", 1000 * clearance.distance,
@@ -59,20 +57,12 @@ void printReport(const Options& options, const ScenePath& path, const PathVerifi
 }
 
 int run(const Options& options) {
-  if (!(options.jointStepDegrees > 0) || !std::isfinite(options.jointStepDegrees)) {
-    throw InputError("--joint-step: must be a positive number of degrees");
-  }
-  if (!(options.toolStepMillimetres > 0) || !std::isfinite(options.toolStepMillimetres)) {
-    throw InputError("--tool-step: must be a positive number of millimetres");
-  }
+  VerifyOptions verify = verifyOptions(options.steps);
   const io::PathFile file = io::readPathFile(options.path);
   const World world = loadWorld(options.scene, options.load);
   const ScenePath path = resolvePath(world, file, options.path);
   const ReferenceGeometry geometry(world);
 
-  VerifyOptions verify;
-  verify.jointStep = options.jointStepDegrees * std::numbers::pi / 180;
-  verify.toolStep = options.toolStepMillimetres / 1000;
   std::size_t lastTenth = 0;
   if (!options.quiet) {
     verify.progress = [&lastTenth](std::size_t done, std::size_t total) {
@@ -104,11 +94,7 @@ VerbRunner setupVerifyPath(CLI::App& command) {
   command.add_option("SCENE", options->scene, "Scene file (YAML, docs/scene-format.md)")
       ->required();
   command.add_option("PATH", options->path, "Path file (JSON, docs/path-format.md)")->required();
-  command.add_option("--joint-step", options->jointStepDegrees,
-                     "Largest joint motion between samples, degrees (default 0.5)");
-  command.add_option("--tool-step", options->toolStepMillimetres,
-                     "Largest motion of a link origin or tool point between samples, millimetres "
-                     "(default 1)");
+  addVerifyStepOptions(command, options->steps);
   command.add_flag("--json", options->json, "Print one JSON object instead of lines");
   command.add_flag("-q,--quiet", options->quiet, "Print only the verdict; no progress");
   addSceneLoadOptions(command, options->load);

@@ -191,23 +191,25 @@ std::string jsonErrorDetail(const std::string& message) {
 
 }  // namespace
 
-PathFile readPathFile(const std::filesystem::path& file) {
+json readJsonFile(const std::filesystem::path& file) {
   const std::string name = file.string();
   std::ifstream in(file, std::ios::binary);
   if (!in || std::filesystem::is_directory(file))
     throw InputError(locate(name, "cannot open file"));
   const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   if (in.bad()) throw InputError(locate(name, "cannot read file"));
-  json root;
   try {
-    root = json::parse(text);
+    return json::parse(text);
   } catch (const json::parse_error& e) {
     const auto [line, column] = lineAndColumn(text, e.byte);
     throw InputError(locate(name, "invalid JSON: " + jsonErrorDetail(e.what()), line, column));
   } catch (const json::exception& e) {  // a number too large for a double
     throw InputError(locate(name, "invalid JSON: " + jsonErrorDetail(e.what())));
   }
-  return PathReader(name).read(root);
+}
+
+PathFile readPathFile(const std::filesystem::path& file) {
+  return PathReader(file.string()).read(readJsonFile(file));
 }
 
 json toJson(const PathFile& path) {

@@ -35,6 +35,10 @@ struct PathFile {
 // "path.json: waypoints[2]: 5 values, waypoints[0] has 6".
 PathFile readPathFile(const std::filesystem::path& file);
 
+// The JSON of a file (path files, plan files). Throws InputError naming the file (and line and
+// column) when it cannot be read or is no JSON.
+nlohmann::json readJsonFile(const std::filesystem::path& file);
+
 // Writes `path` as toJson(path), one waypoint per line. Throws InputError when the file cannot be
 // written.
 void writePathFile(const std::filesystem::path& file, const PathFile& path);

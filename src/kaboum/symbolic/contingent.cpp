@@ -438,6 +438,32 @@ std::string formatPlanTree(const KnowledgeTask& task, const PlanTree& plan) {
   return out;
 }
 
+std::string resolveBranchTest(const SExpr& test, const KnowledgeTask& task, PlanTree::Node& node,
+                              const SExpr*& where) {
+  where = &test;
+  if (!test.startsWith("=")) {
+    node.atom = task.findAtom(toString(test));
+    return node.atom < 0 ? "unknown atom " + toString(test) : "";
+  }
+  if (test.items.size() != 3 || !test.items[2].isAtom()) return "expected '(= (f …) value)'";
+  node.fluent = task.findFluent(toString(test.items[1]));
+  where = &test.items[1];
+  if (node.fluent < 0) return "unknown function term " + toString(test.items[1]);
+  where = &test.items[2];
+  const std::string& written = test.items[2].text;
+  const ObjectId object = task.contingent().problem.findObject(written);
+  if (written == "undefined") {
+    node.value = kUndefined;
+  } else if (!task.task().fluentIsNumeric[node.fluent] && object >= 0) {
+    node.value = object;
+  } else {
+    char* end = nullptr;
+    node.value = std::strtod(written.c_str(), &end);
+    if (end != written.c_str() + written.size()) return "expected a value: " + written;
+  }
+  return "";
+}
+
 PlanTree parsePlanTree(std::string_view text, const std::string& file, const KnowledgeTask& task) {
   const std::vector<SExpr> top = readSExprs(text, file);
   const auto fail = [&](const SExpr& where, const std::string& what) {
@@ -490,30 +516,9 @@ PlanTree parsePlanTree(std::string_view text, const std::string& file, const Kno
       PlanTree::Node node;
       node.kind = PlanTree::Node::Kind::Branch;
       node.pos = item.pos;
-      const SExpr& test = item.items[1];
-      if (test.startsWith("=")) {
-        if (test.items.size() != 3 || !test.items[2].isAtom()) {
-          fail(test, "expected '(= (f …) value)'");
-        }
-        node.fluent = task.findFluent(toString(test.items[1]));
-        if (node.fluent < 0)
-          fail(test.items[1], "unknown function term " + toString(test.items[1]));
-        const std::string& written = test.items[2].text;
-        const ObjectId object = task.contingent().problem.findObject(written);
-        if (written == "undefined") {
-          node.value = kUndefined;
-        } else if (!task.task().fluentIsNumeric[node.fluent] && object >= 0) {
-          node.value = object;
-        } else {
-          char* end = nullptr;
-          node.value = std::strtod(written.c_str(), &end);
-          if (end != written.c_str() + written.size())
-            fail(test.items[2], "expected a value: " + written);
-        }
-      } else {
-        node.atom = task.findAtom(toString(test));
-        if (node.atom < 0) fail(test, "unknown atom " + toString(test));
-      }
+      const SExpr* where = &item.items[1];
+      const std::string error = resolveBranchTest(item.items[1], task, node, where);
+      if (!error.empty()) fail(*where, error);
       node.next = sequence(item.items[2], 1);
       node.onFalse = sequence(item.items[3], 1);
       return add(node);

@@ -9,6 +9,7 @@
 
 #include "kaboum/symbolic/knowledge.hpp"
 #include "kaboum/symbolic/search.hpp"
+#include "kaboum/symbolic/sexpr.hpp"
 
 namespace kaboum::symbolic {
 
@@ -92,6 +93,11 @@ std::vector<int> inDegrees(const PlanTree& plan);
 // What a branch node tests, as formatPlanTree writes it: "(p a)" or "(= (f a) 3)" (an
 // object-valued term names the object).
 std::string branchTest(const KnowledgeTask& task, const PlanTree::Node& node);
+
+// Resolves a branch test as branchTest() writes it — (p a) or (= (f a) v) — into `node`'s atom,
+// or fluent and value. Returns "" or what is wrong, with the sub-expression at fault in `where`.
+std::string resolveBranchTest(const SExpr& test, const KnowledgeTask& task, PlanTree::Node& node,
+                              const SExpr*& where);
 
 // Parses formatPlanTree's output. Throws InputError (file:line:col) for unknown actions, atoms,
 // labels and malformed branches.

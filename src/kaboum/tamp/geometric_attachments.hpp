@@ -111,6 +111,9 @@ class GeometricAttachments {
 
   [[nodiscard]] const World& world() const { return *world_; }
   [[nodiscard]] const GeometricStateMap& map() const { return map_; }
+  // The identifier of `state`, added to the map if new: how the condition checkers see a state
+  // they did not make (a plan file's, replayed).
+  std::size_t intern(const GeometricState& state) { return map_.intern(state); }
   [[nodiscard]] const TampOptions& options() const { return options_; }
   // The recorded geometry of an effect from state `from` to state `to`, if one was applied.
   [[nodiscard]] const ActionGeometry* transition(std::size_t from, std::size_t to) const;

@@ -56,6 +56,48 @@ std::vector<GeometricState> statesAlong(const World& world, const GeometricState
   return states;
 }
 
+void verifyActionPaths(const verify::ReferenceGeometry& reference, std::size_t node,
+                       const ActionGeometry& action, const std::vector<GeometricState>& states,
+                       const verify::VerifyOptions& options, PlanVerification& verification) {
+  const World& world = reference.world();
+  for (std::size_t s = 0; s < action.steps.size(); ++s) {
+    const GeometricStep& step = action.steps[s];
+    if (step.path.empty()) continue;
+    verify::ScenePath path;
+    path.robots = {step.robot};
+    path.waypoints = step.path;
+    const RobotState& robot = states[s].robots[step.robot];
+    for (std::size_t h = 0; h < robot.held.size(); ++h) {
+      path.held.push_back({step.robot, robot.heldObjects[h],
+                           static_cast<std::size_t>(robot.held[h].link), robot.held[h].inLink});
+    }
+    path.context = states[s];
+    PathCheck check{node,
+                    fmt::format("{}({})", action.procedure, fmt::join(action.arguments, ", ")),
+                    s,
+                    step.kind,
+                    world.robots()[step.robot].name,
+                    verify::verifyPath(reference, path, options)};
+    const verify::PathVerification& checked = check.result;
+    ++verification.paths;
+    verification.samples += checked.samples;
+    if (checked.clearance) {
+      verification.smallestClearance =
+          std::min(verification.smallestClearance, checked.clearance->distance);
+    }
+    if (!checked.collisionFree()) {
+      ++verification.collidingPaths;
+      if (verification.firstCollision.empty()) {
+        const verify::PathCollision& hit = checked.collisions.front();
+        verification.firstCollision = fmt::format(
+            "{} step {} ({}): {} collides with {}", check.action, s + 1, toString(step.kind),
+            verify::describe(hit.first), verify::describe(hit.second));
+      }
+    }
+    verification.checks.push_back(std::move(check));
+  }
+}
+
 Solver::Solver(const World& world, ContingentProblem problem, SolveOptions options)
     : world_(&world), problem_(std::move(problem)), options_(std::move(options)) {
   attachments_ = std::make_unique<GeometricAttachments>(world, options_.geometry);
@@ -243,40 +285,9 @@ void Solver::verifyPlan(SolveResult& result) {
     const verify::ReferenceGeometry reference(*world_);
     for (std::size_t node = 0; node < result.geometry.size(); ++node) {
       for (const ActionGeometry& action : result.geometry[node]) {
-        const std::vector<GeometricState> states =
-            statesAlong(*world_, attachments_->map().state(action.from), action);
-        for (std::size_t s = 0; s < action.steps.size(); ++s) {
-          const GeometricStep& step = action.steps[s];
-          if (step.path.empty()) continue;
-          verify::ScenePath path;
-          path.robots = {step.robot};
-          path.waypoints = step.path;
-          const RobotState& robot = states[s].robots[step.robot];
-          for (std::size_t h = 0; h < robot.held.size(); ++h) {
-            path.held.push_back({step.robot, robot.heldObjects[h],
-                                 static_cast<std::size_t>(robot.held[h].link),
-                                 robot.held[h].inLink});
-          }
-          path.context = states[s];
-          const verify::PathVerification checked =
-              verify::verifyPath(reference, path, options_.verification);
-          ++verification.paths;
-          verification.samples += checked.samples;
-          if (checked.clearance) {
-            verification.smallestClearance =
-                std::min(verification.smallestClearance, checked.clearance->distance);
-          }
-          if (!checked.collisionFree()) {
-            ++verification.collidingPaths;
-            if (verification.firstCollision.empty()) {
-              const verify::PathCollision& hit = checked.collisions.front();
-              verification.firstCollision =
-                  fmt::format("{}({}) step {} ({}): {} collides with {}", action.procedure,
-                              fmt::join(action.arguments, ", "), s + 1, toString(step.kind),
-                              verify::describe(hit.first), verify::describe(hit.second));
-            }
-          }
-        }
+        verifyActionPaths(reference, node, action,
+                          statesAlong(*world_, attachments_->map().state(action.from), action),
+                          options_.verification, verification);
       }
     }
   }

@@ -26,6 +26,16 @@ struct SolveOptions {
   verify::VerifyOptions verification;
 };
 
+// One motion of a plan replayed on the original meshes.
+struct PathCheck {
+  std::size_t node = 0;  // the plan node of its action
+  std::string action;    // the geometric effect: "pickUp(kr5, block)"
+  std::size_t step = 0;  // index into the effect's steps
+  GeometricStep::Kind kind = GeometricStep::Kind::Transit;
+  std::string robot;
+  verify::PathVerification result;
+};
+
 // The independent checks of a plan: the symbolic validator over every branch, and every motion
 // replayed on the original meshes.
 struct PlanVerification {
@@ -34,8 +44,9 @@ struct PlanVerification {
   std::size_t paths = 0;
   std::size_t samples = 0;
   std::size_t collidingPaths = 0;
-  double smallestClearance = 0;  // metres, over every path (infinity when nothing is checked)
-  std::string firstCollision;    // "action (pickup …) step 2 (approach): …", or ""
+  double smallestClearance = 0;   // metres, over every path (infinity when nothing is checked)
+  std::string firstCollision;     // "pickUp(kr5, block) step 2 (approach): …", or ""
+  std::vector<PathCheck> checks;  // every path, in the order checked
   double seconds = 0;
 
   [[nodiscard]] bool passed() const {
@@ -100,5 +111,12 @@ class Solver {
 // object, a Release places it).
 std::vector<GeometricState> statesAlong(const World& world, const GeometricState& from,
                                         const ActionGeometry& action);
+
+// Replays every motion of `action` (of plan node `node`) with the independent verifier in its
+// state — `states` as statesAlong() gives them, the robot holding what it holds there — and adds
+// each to `verification`.
+void verifyActionPaths(const verify::ReferenceGeometry& reference, std::size_t node,
+                       const ActionGeometry& action, const std::vector<GeometricState>& states,
+                       const verify::VerifyOptions& options, PlanVerification& verification);
 
 }  // namespace kaboum::tamp

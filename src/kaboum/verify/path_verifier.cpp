@@ -241,6 +241,36 @@ nlohmann::json placeJson(const PathPlace& place) {
 
 }  // namespace
 
+std::string waypointError(const World& world, std::span<const std::size_t> robots,
+                          std::span<const double> waypoint) {
+  ScenePath path;
+  path.robots.assign(robots.begin(), robots.end());
+  std::size_t dof = 0;
+  for (std::size_t robot : robots) {
+    dof += static_cast<std::size_t>(world.robots()[robot].collision.model().dof());
+  }
+  if (waypoint.size() != dof) {
+    return fmt::format(": {} values, but robots {} have {} joints", waypoint.size(),
+                       nameList(world, path.robots), dof);
+  }
+  for (const RobotSlice& slice : slicesOf(world, path)) {
+    const WorldRobot& robot = world.robots()[slice.robot];
+    for (int v = 0; v < robot.collision.model().dof(); ++v) {
+      const Joint& joint = robot.collision.model().variableJoint(v);
+      const std::size_t index = slice.offset + static_cast<std::size_t>(v);
+      const double value = waypoint[index];
+      if (!std::isfinite(value)) return fmt::format("[{}]: not finite", index);
+      if (joint.type != JointType::Continuous &&
+          (value < joint.lower - kLimitTolerance || value > joint.upper + kLimitTolerance)) {
+        return fmt::format(
+            "[{}]: joint '{}' of robot '{}' at {:g} is outside its limits [{:g}, {:g}]", index,
+            joint.name, robot.name, value, joint.lower, joint.upper);
+      }
+    }
+  }
+  return "";
+}
+
 ScenePath resolvePath(const World& world, const io::PathFile& path, const std::string& fileName) {
   const auto fail = [&](const std::string& key, const std::string& what) {
     throw InputError(locate(fileName, key + ": " + what));
@@ -263,26 +293,9 @@ ScenePath resolvePath(const World& world, const io::PathFile& path, const std::s
   }
   if (path.waypoints.empty()) fail("waypoints", "no waypoint");
   for (std::size_t w = 0; w < path.waypoints.size(); ++w) {
-    const std::vector<double>& waypoint = path.waypoints[w];
-    const std::string key = fmt::format("waypoints[{}]", w);
-    if (waypoint.size() != dof) {
-      fail(key, fmt::format("{} values, but robots {} have {} joints", waypoint.size(),
-                            nameList(world, result.robots), dof));
-    }
-    for (const RobotSlice& slice : slicesOf(world, result)) {
-      const WorldRobot& robot = world.robots()[slice.robot];
-      for (int v = 0; v < robot.collision.model().dof(); ++v) {
-        const Joint& joint = robot.collision.model().variableJoint(v);
-        const double value = waypoint[slice.offset + static_cast<std::size_t>(v)];
-        if (!std::isfinite(value)) fail(fmt::format("{}[{}]", key, slice.offset + v), "not finite");
-        if (joint.type != JointType::Continuous &&
-            (value < joint.lower - kLimitTolerance || value > joint.upper + kLimitTolerance)) {
-          fail(fmt::format("{}[{}]", key, slice.offset + v),
-               fmt::format("joint '{}' of robot '{}' at {:g} is outside its limits [{:g}, {:g}]",
-                           joint.name, robot.name, value, joint.lower, joint.upper));
-        }
-      }
-    }
+    const std::string error = waypointError(world, result.robots, path.waypoints[w]);
+    if (!error.empty())
+      throw InputError(locate(fileName, fmt::format("waypoints[{}]{}", w, error)));
   }
   result.waypoints = path.waypoints;
   for (std::size_t h = 0; h < path.held.size(); ++h) {

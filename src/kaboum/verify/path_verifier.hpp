@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,13 @@ struct ScenePath {
 // the key, e.g. "path.json: waypoints[3][1]: joint 'left_j2' of robot 'twin' at 2.5 is outside
 // its limits [-2, 2]".
 ScenePath resolvePath(const World& world, const io::PathFile& path, const std::string& fileName);
+
+// What is wrong with one waypoint of `robots` (World robot indices, their configurations
+// concatenated): its length or a value not finite or outside its joint's limits, as a key suffix
+// and the reason ("[4]: joint 'a5' of robot 'kr5' at 3.2 is outside its limits [-2.1, 2.1]",
+// ": 5 values, but robots 'kr5' have 6 joints"); "" when it is fine.
+std::string waypointError(const World& world, std::span<const std::size_t> robots,
+                          std::span<const double> waypoint);
 
 struct VerifyOptions {
   // The largest motion of any revolute or continuous joint between two samples (radians); a
