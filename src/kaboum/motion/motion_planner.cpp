@@ -111,6 +111,20 @@ std::optional<std::string> configurationProblem(const MotionGroup& group, std::s
   return std::nullopt;
 }
 
+std::optional<std::vector<double>> randomFreeConfiguration(const MotionGroup& group,
+                                                           double clearance, std::mt19937_64& rng,
+                                                           int draws) {
+  std::vector<double> q(group.dimension());
+  for (int draw = 0; draw < draws; ++draw) {
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      q[i] =
+          group.lower()[i] + kinematics::uniformUnit(rng) * (group.upper()[i] - group.lower()[i]);
+    }
+    if (!configurationProblem(group, q, clearance)) return q;
+  }
+  return std::nullopt;
+}
+
 double pathLength(const Waypoints& path) {
   double length = 0;
   for (std::size_t i = 0; i + 1 < path.size(); ++i) length += distance(path[i], path[i + 1]);
