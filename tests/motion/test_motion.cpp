@@ -259,18 +259,18 @@ TEST(MotionPlanner, TwoArmsMoveTogetherWithoutMeetingEachOther) {
   const MotionGroup group = groupOf(comauWorld(), {"comau-left", "comau-right"});
   ASSERT_EQ(group.dimension(), 14u);  // 6 joints and 2 fingers, 6 joints
   const std::vector<double> start = group.configuration(group.context());
-  // Both arms swing towards the middle of the table at once, their forearms (link meshes) passing
-  // close to each other.
+  // Both arms swing towards the middle of the table, where the straight motion makes them meet.
   std::vector<double> goal = start;
-  goal[0] = -25 * kDegree;
-  goal[8] = 30 * kDegree;
+  goal[0] = -40 * kDegree;
+  goal[8] = 60 * kDegree;
   const MotionResult result = planMotion(group, start, goal);
   ASSERT_EQ(result.status, PlannerStatus::Solved) << result.message;
   expectCertified(group, result);
   expectDenselyFree(group, result.path, 0.5 * kDegree);
 }
 
-// The benchmark's Comau pair (examples/scenes/comau-pair.yaml, link meshes of data/robots/comau):
+// The benchmark's Comau pair (examples/scenes/comau-pair.yaml: the URDFs with the link meshes of
+// data/robots/comau):
 // both arms move at once between random free configurations drawn with the scene's seed, each goal
 // within 0.4 rad per joint of its start (so that the verifier's dense replay on the original
 // meshes stays short); every path is certified and free for the verifier.
