@@ -26,52 +26,89 @@ namespace og = ompl::geometric;
 
 using collision::RobotCollisionModel;
 
-FclStateChecker::FclStateChecker(const verify::ReferenceGeometry& geometry, std::size_t robot)
-    : geometry_(geometry), robot_(geometry.world().robots().at(robot)) {
+namespace {
+
+// The collision part of `link` of a robot, as the verifier maps them (path_verifier.cpp).
+std::optional<std::size_t> partOf(const RobotCollisionModel& collision, std::size_t link) {
+  for (std::size_t part = 0; part < collision.partCount(); ++part) {
+    if (static_cast<std::size_t>(collision.part(part).link) == link) return part;
+  }
+  return std::nullopt;
+}
+
+// World poses of every link of `robot` at configuration q.
+void worldLinkPoses(const world::WorldRobot& robot, std::span<const double> q,
+                    std::vector<Pose>& poses) {
+  robot.collision.model().linkPoses(q, poses);
+  const Pose& base = robot.collision.basePose();
+  for (Pose& pose : poses) pose = base * pose;
+}
+
+}  // namespace
+
+FclStateChecker::FclStateChecker(const verify::ReferenceGeometry& geometry,
+                                 const motion::MotionGroup& group)
+    : geometry_(geometry), group_(group) {
   const world::World& world = geometry.world();
-  const RobotCollisionModel& collision = robot_.collision;
-  for (std::size_t link = 0; link < collision.model().links().size(); ++link) {
-    if (const auto body = geometry.linkBody(robot, link)) links_.emplace_back(link, *body);
-  }
-  const world::GeometricState initial = world.initialState();
-  for (std::size_t object = 0; object < world.scene().size(); ++object) {
-    objects_.emplace_back(geometry.objectBody(object),
-                          world.scene().pose(object, initial.placements));
-  }
-  // The link part of each link, as the verifier maps them (path_verifier.cpp).
-  const auto partOf = [&](std::size_t link) -> std::optional<std::size_t> {
-    for (std::size_t part = 0; part < collision.partCount(); ++part) {
-      if (static_cast<std::size_t>(collision.part(part).link) == link) return part;
+  const world::GeometricState& context = group.context();
+  const std::vector<std::size_t>& moving = group.robots();
+  for (std::size_t k = 0; k < moving.size(); ++k) {
+    const RobotCollisionModel& collision = world.robots()[moving[k]].collision;
+    for (std::size_t link = 0; link < collision.model().links().size(); ++link) {
+      if (const auto body = geometry.linkBody(moving[k], link)) links_.push_back({k, link, *body});
     }
-    return std::nullopt;
-  };
+    linkPoses_.emplace_back(collision.model().links().size());
+  }
+  for (std::size_t object = 0; object < world.scene().size(); ++object) {
+    if (world.scene().present(object, context.placements)) {
+      obstacles_.emplace_back(geometry.objectBody(object),
+                              world.scene().pose(object, context.placements));
+    }
+  }
+  std::vector<Pose> poses;
+  for (std::size_t robot = 0; robot < world.robots().size(); ++robot) {
+    if (std::find(moving.begin(), moving.end(), robot) != moving.end()) continue;
+    worldLinkPoses(world.robots()[robot], context.robots[robot].configuration, poses);
+    for (std::size_t link = 0; link < poses.size(); ++link) {
+      if (const auto body = geometry.linkBody(robot, link))
+        obstacles_.emplace_back(*body, poses[link]);
+    }
+  }
   for (std::size_t i = 0; i < links_.size(); ++i) {
     for (std::size_t j = i + 1; j < links_.size(); ++j) {
-      const auto a = partOf(links_[i].first), b = partOf(links_[j].first);
-      if (!a || !b || !collision.filter().allowed(*a, *b)) selfPairs_.emplace_back(i, j);
+      if (links_[i].robot != links_[j].robot) {
+        pairs_.emplace_back(i, j);
+        continue;
+      }
+      const RobotCollisionModel& collision = world.robots()[moving[links_[i].robot]].collision;
+      const auto a = partOf(collision, links_[i].link), b = partOf(collision, links_[j].link);
+      if (!a || !b || !collision.filter().allowed(*a, *b)) pairs_.emplace_back(i, j);
     }
   }
-  linkPoses_.resize(collision.model().links().size());
 }
 
 bool FclStateChecker::isValid(std::span<const double> q) {
   ++checks_;
-  robot_.collision.model().linkPoses(q, linkPoses_);
-  const Pose& base = robot_.collision.basePose();
-  for (Pose& pose : linkPoses_) pose = base * pose;
+  for (std::size_t k = 0; k < linkPoses_.size(); ++k) {
+    worldLinkPoses(geometry_.world().robots()[group_.robots()[k]], group_.robotPart(q, k),
+                   linkPoses_[k]);
+  }
+  const auto poseOf = [&](const MovingLink& link) -> const Pose& {
+    return linkPoses_[link.robot][link.link];
+  };
   // A pure collision test: no distance is wanted (-infinity of interest).
   constexpr double kNoDistance = -std::numeric_limits<double>::infinity();
-  for (const auto& [link, body] : links_) {
-    for (const auto& [object, pose] : objects_) {
-      if (geometry_.proximity(body, linkPoses_[link], object, pose, kNoDistance).collides) {
+  for (const MovingLink& link : links_) {
+    for (const auto& [body, pose] : obstacles_) {
+      if (geometry_.proximity(link.body, poseOf(link), body, pose, kNoDistance).collides) {
         return false;
       }
     }
   }
-  for (const auto& [i, j] : selfPairs_) {
-    const auto& [linkA, bodyA] = links_[i];
-    const auto& [linkB, bodyB] = links_[j];
-    if (geometry_.proximity(bodyA, linkPoses_[linkA], bodyB, linkPoses_[linkB], kNoDistance)
+  for (const auto& [i, j] : pairs_) {
+    if (geometry_
+            .proximity(links_[i].body, poseOf(links_[i]), links_[j].body, poseOf(links_[j]),
+                       kNoDistance)
             .collides) {
       return false;
     }

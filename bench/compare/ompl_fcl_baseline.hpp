@@ -17,26 +17,34 @@
 
 namespace kaboum::cli {
 
-// Whether one robot of a World collides at a configuration, by FCL on the original geometry:
-// every link against every scene object (at its initial pose) and against every other link of
-// the robot except the pairs the World's robot collision filter allows (adjacent links, the
-// SRDF's pairs, pairs overlapping at home). Pairs whose bounding spheres are apart are skipped.
+// Whether the robots of a motion group collide at a configuration, by FCL on the original
+// geometry: every moving link against every scene object present in the group's context state and
+// every link of the robots outside the group (at their context configurations), against every
+// link of the other moving robots, and against every other link of its robot except the pairs the
+// World's robot collision filter allows (adjacent links, the SRDF's pairs, pairs overlapping at
+// home). Objects held in the context are not modelled. Pairs whose bounding spheres are apart are
+// skipped.
 class FclStateChecker {
  public:
-  // `geometry` must outlive the checker; `robot` indexes geometry.world().robots().
-  FclStateChecker(const verify::ReferenceGeometry& geometry, std::size_t robot);
+  // `geometry` and `group` must outlive the checker; the group's World is geometry.world().
+  FclStateChecker(const verify::ReferenceGeometry& geometry, const motion::MotionGroup& group);
 
-  // q: the robot's configuration. Counts the call.
+  // q: the group's configuration. Counts the call.
   [[nodiscard]] bool isValid(std::span<const double> q);
   [[nodiscard]] std::size_t checks() const { return checks_; }
 
  private:
+  struct MovingLink {
+    std::size_t robot = 0;  // index into group.robots()
+    std::size_t link = 0;
+    std::size_t body = 0;
+  };
   const verify::ReferenceGeometry& geometry_;
-  const world::WorldRobot& robot_;
-  std::vector<std::pair<std::size_t, std::size_t>> links_;      // (link, body) with geometry
-  std::vector<std::pair<std::size_t, Pose>> objects_;           // (body, world pose)
-  std::vector<std::pair<std::size_t, std::size_t>> selfPairs_;  // indices into links_
-  std::vector<Pose> linkPoses_;
+  const motion::MotionGroup& group_;
+  std::vector<MovingLink> links_;                           // the moving links with geometry
+  std::vector<std::pair<std::size_t, Pose>> obstacles_;     // (body, world pose)
+  std::vector<std::pair<std::size_t, std::size_t>> pairs_;  // indices into links_
+  std::vector<std::vector<Pose>> linkPoses_;                // by moving robot
   std::size_t checks_ = 0;
 };
 

@@ -1,7 +1,9 @@
-// `kaboum-compare motion`: the MotionBenchMaker benchmark (Panda), kaboum's certified motion
-// planning against the set-up MoveIt users have today (OMPL's RRT-Connect, FCL on the original
-// meshes, motions checked at 1° steps, OMPL's path simplifier) on the same queries, every path of
-// both checked by the independent verifier (FCL on the original meshes, 0.5° and 1 mm samples).
+// `kaboum-compare motion`: the MotionBenchMaker benchmark (Panda), and seeded random queries in
+// kaboum scene files (the scenes MotionBenchMaker lacks: two arms sharing a workspace, a mobile
+// manipulator), kaboum's certified motion planning (thesis §6.1.2, §4.5) against the set-up
+// MoveIt users have today (OMPL's RRT-Connect, FCL on the original meshes, motions checked at 1°
+// steps, OMPL's path simplifier) on the same queries, every path of both checked by the
+// independent verifier (FCL on the original meshes, 0.5° and 1 mm samples).
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
@@ -14,6 +16,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -39,6 +42,11 @@ struct MotionBenchOptions {
   std::string problems = testing::dataFile("motionbenchmaker");
   std::size_t every = 1;  // every N-th problem, from the first
   std::size_t limit = 0;  // 0: every problem
+  // A kaboum scene file instead of the problems: `queries` random start/goal pairs of `robots`
+  // (names; empty: every robot of the scene moving together).
+  std::string scene;
+  std::size_t queries = 20;
+  std::vector<std::string> robots;
   double timeLimit = 10;
   std::uint64_t seed = 1;
   std::optional<double> sweepEpsilon;
@@ -94,10 +102,10 @@ double cpuSecondsSince(double startNanoseconds) {
   return 1e-9 * (threadNanoseconds() - startNanoseconds);
 }
 
-void verifyRun(const verify::ReferenceGeometry& geometry, std::size_t robot,
+void verifyRun(const verify::ReferenceGeometry& geometry, const motion::MotionGroup& group,
                const std::vector<std::vector<double>>& path, PlannerRun& run) {
   const verify::PathVerification verification =
-      verify::verifyPath(geometry, verify::ScenePath{{robot}, path, {}, std::nullopt});
+      verify::verifyPath(geometry, verify::ScenePath{group.robots(), path, {}, std::nullopt});
   run.collisionFree = verification.collisionFree();
   if (verification.clearance) run.clearance = verification.clearance->distance;
   if (!verification.collisions.empty()) {
@@ -107,10 +115,15 @@ void verifyRun(const verify::ReferenceGeometry& geometry, std::size_t robot,
   }
 }
 
-PlannerRun runKaboum(const motion::MotionGroup& group, const io::MotionProblem& problem,
+// One query: its start and goal, configurations of the motion group.
+struct Query {
+  std::vector<double> start, goal;
+};
+
+PlannerRun runKaboum(const motion::MotionGroup& group, const Query& query,
                      const motion::MotionOptions& options, std::vector<std::vector<double>>& path) {
   const double cpu = threadNanoseconds();
-  motion::MotionResult result = motion::planMotion(group, problem.start, problem.goal, options);
+  motion::MotionResult result = motion::planMotion(group, query.start, query.goal, options);
   PlannerRun run;
   run.cpuSeconds = cpuSecondsSince(cpu);
   run.status = toString(result.status);
@@ -134,10 +147,10 @@ PlannerRun runKaboum(const motion::MotionGroup& group, const io::MotionProblem& 
 }
 
 PlannerRun runOmplFcl(const motion::MotionGroup& group, FclStateChecker& checker,
-                      const io::MotionProblem& problem, double timeLimit,
+                      const Query& query, double timeLimit,
                       std::vector<std::vector<double>>& path) {
   const double cpu = threadNanoseconds();
-  OmplFclResult result = planWithOmplFcl(group, checker, problem.start, problem.goal,
+  OmplFclResult result = planWithOmplFcl(group, checker, query.start, query.goal,
                                          OmplFclOptions{timeLimit, OmplFclOptions{}.resolution});
   PlannerRun run;
   run.cpuSeconds = cpuSecondsSince(cpu);
@@ -172,6 +185,25 @@ std::string verdict(const PlannerRun& run) {
   return text + "verified (clearance " + clearance.str() + " mm)";
 }
 
+motion::MotionOptions motionOptions(const MotionBenchOptions& options) {
+  motion::MotionOptions motionOptions;
+  motionOptions.timeLimit = options.timeLimit;
+  motionOptions.seed = options.seed;
+  motionOptions.sweepEpsilon = options.sweepEpsilon;
+  return motionOptions;
+}
+
+// Both planners on one query of `group`, each path checked by the verifier.
+void runQuery(const motion::MotionGroup& group, const verify::ReferenceGeometry& geometry,
+              const Query& query, const MotionBenchOptions& options, ProblemRun& run) {
+  std::vector<std::vector<double>> path;
+  run.kaboum = runKaboum(group, query, motionOptions(options), path);
+  if (run.kaboum.solved) verifyRun(geometry, group, path, run.kaboum);
+  FclStateChecker checker(geometry, group);
+  run.ompl = runOmplFcl(group, checker, query, options.timeLimit, path);
+  if (run.ompl.solved) verifyRun(geometry, group, path, run.ompl);
+}
+
 ProblemRun runProblem(const io::MoveItProblemFiles& files, const MotionBenchOptions& options,
                       double& sweepEpsilon) {
   const io::MotionProblem problem = io::readMoveItProblem(files.scene, files.request, panda());
@@ -186,22 +218,61 @@ ProblemRun runProblem(const io::MoveItProblemFiles& files, const MotionBenchOpti
   if (!named || named->kind != world::NamedEntity::Kind::Robot) {
     throw InputError(problem.name + ": no robot '" + problem.robot + "' in the World");
   }
-  const std::size_t robot = named->index;
-  const motion::MotionGroup group(world, world.initialState(), {robot});
+  const motion::MotionGroup group(world, world.initialState(), {named->index});
   const verify::ReferenceGeometry geometry(world);
-
-  motion::MotionOptions motionOptions;
-  motionOptions.timeLimit = options.timeLimit;
-  motionOptions.seed = options.seed;
-  motionOptions.sweepEpsilon = options.sweepEpsilon;
-  sweepEpsilon = motion::sweepEpsilonOf(group, motionOptions);
-  std::vector<std::vector<double>> path;
-  run.kaboum = runKaboum(group, problem, motionOptions, path);
-  if (run.kaboum.solved) verifyRun(geometry, robot, path, run.kaboum);
-  FclStateChecker checker(geometry, robot);
-  run.ompl = runOmplFcl(group, checker, problem, options.timeLimit, path);
-  if (run.ompl.solved) verifyRun(geometry, robot, path, run.ompl);
+  sweepEpsilon = motion::sweepEpsilonOf(group, motionOptions(options));
+  runQuery(group, geometry, {problem.start, problem.goal}, options, run);
   return run;
+}
+
+// A random free configuration of `group` (motion::randomFreeConfiguration).
+std::vector<double> freeConfiguration(const motion::MotionGroup& group, double clearance,
+                                      std::mt19937_64& random) {
+  auto q = motion::randomFreeConfiguration(group, clearance, random);
+  if (!q) throw InputError("no free configuration in 100000 random draws");
+  return std::move(*q);
+}
+
+// `options.queries` random queries in the scene file: start and goal drawn by freeConfiguration
+// with the scene's seed, both planners on each.
+std::vector<ProblemRun> runScene(const MotionBenchOptions& options, double& sweepEpsilon) {
+  const Clock::time_point building = Clock::now();
+  const world::World world = loadWorld(options.scene, options.load);
+  const double worldSeconds = std::chrono::duration<double>(Clock::now() - building).count();
+  std::vector<std::size_t> robots;
+  for (const std::string& name : options.robots) {
+    const auto named = world.find(name);
+    if (!named || named->kind != world::NamedEntity::Kind::Robot) {
+      throw InputError(options.scene + ": no robot '" + name + "' in the scene");
+    }
+    robots.push_back(named->index);
+  }
+  if (robots.empty()) {
+    for (std::size_t robot = 0; robot < world.robots().size(); ++robot) robots.push_back(robot);
+  }
+  if (robots.empty()) throw InputError(options.scene + ": the scene has no robot");
+  const motion::MotionGroup group(world, world.initialState(), robots);
+  const verify::ReferenceGeometry geometry(world);
+  sweepEpsilon = motion::sweepEpsilonOf(group, motionOptions(options));
+  std::mt19937_64 random(world.description().settings.seed);
+  const std::string stem = fs::path(options.scene).stem().string();
+  std::vector<ProblemRun> runs;
+  for (std::size_t i = 0; i < options.queries; ++i) {
+    Query query;
+    query.start = freeConfiguration(group, sweepEpsilon, random);
+    query.goal = freeConfiguration(group, sweepEpsilon, random);
+    ProblemRun& run = runs.emplace_back();
+    std::ostringstream name;
+    name << stem << "/query" << std::setw(2) << std::setfill('0') << i;
+    run.name = name.str();
+    run.worldSeconds = worldSeconds;
+    runQuery(group, geometry, query, options, run);
+    if (!options.quiet) {
+      std::cerr << "[" << i + 1 << "/" << options.queries << "] " << run.name << ": kaboum "
+                << verdict(run.kaboum) << "; OMPL+FCL " << verdict(run.ompl) << std::endl;
+    }
+  }
+  return runs;
 }
 
 // The figures of one planner over every problem: counts, times of the solved queries, lengths,
@@ -302,7 +373,8 @@ nlohmann::json figures(const std::vector<ProblemRun>& runs, const MotionBenchOpt
   }
   std::size_t both = 0;
   for (const ProblemRun& run : runs) both += run.kaboum.solved && run.ompl.solved ? 1 : 0;
-  return {{"problems", options.problems},
+  return {{"problems", options.scene.empty() ? options.problems : options.scene},
+          {"scene", !options.scene.empty()},
           {"every", options.every},
           {"count", runs.size()},
           {"time_limit", options.timeLimit},
@@ -329,9 +401,14 @@ std::string number(const nlohmann::json& value, int precision, double scale = 1)
 }
 
 void printTable(const nlohmann::json& f, std::ostream& out) {
-  out << "MotionBenchMaker: " << f["count"] << " problems of " << f["problems"].get<std::string>()
-      << (f["every"] == 1 ? "" : " (every " + f["every"].dump() + "th)") << ", time limit "
-      << f["time_limit"] << " s, seed " << f["seed"] << ", sweep epsilon "
+  if (f["scene"].get<bool>()) {
+    out << "Scene " << f["problems"].get<std::string>() << ": " << f["count"]
+        << " random queries, time limit ";
+  } else {
+    out << "MotionBenchMaker: " << f["count"] << " problems of " << f["problems"].get<std::string>()
+        << (f["every"] == 1 ? "" : " (every " + f["every"].dump() + "th)") << ", time limit ";
+  }
+  out << f["time_limit"] << " s, seed " << f["seed"] << ", sweep epsilon "
       << 1e3 * f["sweep_epsilon"].get<double>() << " mm, OMPL+FCL motions at 1 deg\n"
       << "World build: median " << number(f["world_seconds"]["median"], 3) << " s, max "
       << number(f["world_seconds"]["max"], 3) << " s (not part of planning)\n\n";
@@ -370,31 +447,9 @@ void printTable(const nlohmann::json& f, std::ostream& out) {
   }
 }
 
-int runMotionBench(const MotionBenchOptions& options) {
-  if (options.timeLimit <= 0) throw InputError("--time-limit must be positive");
-  if (options.sweepEpsilon && *options.sweepEpsilon <= 0) {
-    throw InputError("--sweep-epsilon must be positive");
-  }
-  // Before any OMPL generator exists: the same seed and problems give the same OMPL+FCL run.
-  ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(options.seed));
-  ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
-  std::vector<io::MoveItProblemFiles> files = io::listMoveItProblems(options.problems);
-  if (options.every == 0) throw InputError("--every must be positive");
-  std::vector<io::MoveItProblemFiles> chosen;
-  for (std::size_t i = 0; i < files.size(); i += options.every) chosen.push_back(files[i]);
-  files = std::move(chosen);
-  if (options.limit > 0 && files.size() > options.limit) files.resize(options.limit);
-  std::vector<ProblemRun> runs;
-  double sweepEpsilon = 0;
-  for (std::size_t i = 0; i < files.size(); ++i) {
-    runs.push_back(runProblem(files[i], options, sweepEpsilon));
-    if (!options.quiet) {
-      const ProblemRun& run = runs.back();
-      std::cerr << "[" << i + 1 << "/" << files.size() << "] " << run.name << ": World "
-                << std::fixed << std::setprecision(2) << run.worldSeconds << " s; kaboum "
-                << verdict(run.kaboum) << "; OMPL+FCL " << verdict(run.ompl) << std::endl;
-    }
-  }
+// Prints the figures (a table, or JSON); exit code 1 when a kaboum path collides.
+int report(const std::vector<ProblemRun>& runs, const MotionBenchOptions& options,
+           double sweepEpsilon) {
   const nlohmann::json f = figures(runs, options, sweepEpsilon);
   if (options.json) {
     std::cout << f.dump(2) << "\n";
@@ -404,13 +459,57 @@ int runMotionBench(const MotionBenchOptions& options) {
   return f["kaboum"]["colliding_paths"].get<std::size_t>() == 0 ? 0 : 1;
 }
 
+int runMotionBench(const MotionBenchOptions& options) {
+  if (options.timeLimit <= 0) throw InputError("--time-limit must be positive");
+  if (options.sweepEpsilon && *options.sweepEpsilon <= 0) {
+    throw InputError("--sweep-epsilon must be positive");
+  }
+  // Before any OMPL generator exists: the same seed and problems give the same OMPL+FCL run.
+  ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(options.seed));
+  ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+  double sweepEpsilon = 0;
+  if (!options.scene.empty()) {
+    if (options.queries == 0) throw InputError("--queries must be positive");
+    const std::vector<ProblemRun> runs = runScene(options, sweepEpsilon);
+    return report(runs, options, sweepEpsilon);
+  }
+  std::vector<io::MoveItProblemFiles> files = io::listMoveItProblems(options.problems);
+  if (options.every == 0) throw InputError("--every must be positive");
+  std::vector<io::MoveItProblemFiles> chosen;
+  for (std::size_t i = 0; i < files.size(); i += options.every) chosen.push_back(files[i]);
+  files = std::move(chosen);
+  if (options.limit > 0 && files.size() > options.limit) files.resize(options.limit);
+  std::vector<ProblemRun> runs;
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    runs.push_back(runProblem(files[i], options, sweepEpsilon));
+    if (!options.quiet) {
+      const ProblemRun& run = runs.back();
+      std::cerr << "[" << i + 1 << "/" << files.size() << "] " << run.name << ": World "
+                << std::fixed << std::setprecision(2) << run.worldSeconds << " s; kaboum "
+                << verdict(run.kaboum) << "; OMPL+FCL " << verdict(run.ompl) << std::endl;
+    }
+  }
+  return report(runs, options, sweepEpsilon);
+}
+
 VerbRunner setupMotionBench(CLI::App& command) {
   auto options = std::make_shared<MotionBenchOptions>();
+  CLI::Option* problems =
+      command
+          .add_option("--problems", options->problems,
+                      "Folder of MotionBenchMaker problems (sceneNNNN.yaml, requestNNNN.yaml), "
+                      "searched recursively")
+          ->capture_default_str();
   command
-      .add_option("--problems", options->problems,
-                  "Folder of MotionBenchMaker problems (sceneNNNN.yaml, requestNNNN.yaml), "
-                  "searched recursively")
+      .add_option("--scene", options->scene,
+                  "A kaboum scene file instead: random start/goal queries (free configurations "
+                  "drawn with the scene's seed)")
+      ->excludes(problems);
+  command.add_option("--queries", options->queries, "Random queries in the --scene file")
       ->capture_default_str();
+  command.add_option("--robot", options->robots,
+                     "A robot of the --scene file that moves (repeat for several; default: every "
+                     "robot, all moving together)");
   command
       .add_option("--every", options->every,
                   "Only every N-th problem in path order, from the first (all scenarios with "
@@ -432,9 +531,9 @@ VerbRunner setupMotionBench(CLI::App& command) {
 
 const VerbRegistration registration{
     "motion",
-    "MotionBenchMaker (Panda): kaboum's certified motion planning vs OMPL RRT-Connect with FCL "
-    "on the original meshes, every path checked by the independent verifier; exit code 1 when a "
-    "kaboum path collides",
+    "MotionBenchMaker (Panda) or random queries in a scene file: kaboum's certified motion "
+    "planning vs OMPL RRT-Connect with FCL on the original meshes, every path checked by the "
+    "independent verifier; exit code 1 when a kaboum path collides",
     setupMotionBench};
 
 }  // namespace

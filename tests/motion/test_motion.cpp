@@ -269,6 +269,40 @@ TEST(MotionPlanner, TwoArmsMoveTogetherWithoutMeetingEachOther) {
   expectDenselyFree(group, result.path, 0.5 * kDegree);
 }
 
+// The benchmark's Comau pair (examples/scenes/comau-pair.yaml: the URDFs with the link meshes of
+// data/robots/comau):
+// both arms move at once between random free configurations drawn with the scene's seed, each goal
+// within 0.4 rad per joint of its start (so that the verifier's dense replay on the original
+// meshes stays short); every path is certified and free for the verifier.
+TEST(MotionPlanner, TheComauPairMovesBothArmsBetweenRandomFreeConfigurations) {
+  const World world(readSceneFile(exampleFile("scenes/comau-pair.yaml")), kHulls);
+  ASSERT_EQ(world.robots().size(), 2u);
+  for (const WorldRobot& robot : world.robots()) EXPECT_GE(robot.collision.partCount(), 7u);
+  ASSERT_FALSE(world.firstCollision(world.initialState()));
+  const MotionGroup group = groupOf(world, {"comau-left", "comau-right"});
+  const verify::ReferenceGeometry reference(world);
+  const double clearance = world.description().settings.sweepEpsilon;
+  std::mt19937_64 rng(world.description().settings.seed);
+  for (int query = 0; query < 3; ++query) {
+    const std::optional<std::vector<double>> start = randomFreeConfiguration(group, clearance, rng);
+    ASSERT_TRUE(start);
+    std::optional<std::vector<double>> goal;
+    while (!goal) {
+      std::vector<double> q = *start;
+      for (std::size_t i = 0; i < q.size(); ++i) {
+        q[i] = std::clamp(q[i] + 0.8 * (kinematics::uniformUnit(rng) - 0.5), group.lower()[i],
+                          group.upper()[i]);
+      }
+      if (!configurationProblem(group, q, clearance)) goal = std::move(q);
+    }
+    const MotionResult result = planMotion(group, *start, *goal);
+    ASSERT_EQ(result.status, PlannerStatus::Solved) << "query " << query << ": " << result.message;
+    expectCertified(group, result);
+    EXPECT_TRUE(verify::verifyPath(reference, {{0, 1}, result.path, {}}).collisionFree())
+        << "query " << query;
+  }
+}
+
 TEST(MotionPlanner, AMobileBaseDrivesAroundAnObstacle) {
   const test::ScratchDir dir;
   const std::string scene = R"(robots:

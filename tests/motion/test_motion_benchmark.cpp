@@ -1,11 +1,12 @@
-// `kaboum-compare motion` on the six copied MotionBenchMaker problems: every kaboum path is found
-// collision-free by the independent verifier, and the JSON has the summary and per-problem fields.
-// No timing is asserted.
+// `kaboum-compare motion` on the six copied MotionBenchMaker problems and on random queries in the
+// mobile manipulator scene: every kaboum path is found collision-free by the independent verifier,
+// and the JSON has the summary and per-problem fields. No timing is asserted.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
 #include "../support/test_support.hpp"
+#include "kaboum/testing/data_paths.hpp"
 
 namespace kaboum::motion {
 
@@ -56,11 +57,41 @@ TEST(MotionBenchmark, EveryKaboumPathOfTheCopiedProblemsIsVerifiedFree) {
   }
 }
 
+TEST(MotionBenchmark, RandomQueriesInASceneFileAreVerifiedFree) {
+  const test::ScratchDir dir;
+  const test::CliResult result =
+      test::runCompare(dir, "motion --json --quiet --no-cache --queries 3 --scene '" +
+                                testing::exampleFile("scenes/mobile-manipulator.yaml") + "'");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const nlohmann::json json = nlohmann::json::parse(result.out);
+  EXPECT_EQ(json["scene"], true);
+  EXPECT_EQ(json["count"], 3);
+  EXPECT_DOUBLE_EQ(json["sweep_epsilon"].get<double>(), 0.005);
+  EXPECT_EQ(json["kaboum"]["solved"], 3);
+  EXPECT_EQ(json["kaboum"]["valid"], 3);
+  EXPECT_EQ(json["ompl_fcl"]["total"], 3);
+  ASSERT_EQ(json["runs"].size(), 3u);
+  EXPECT_EQ(json["runs"][0]["problem"], "mobile-manipulator/query00");
+  // The same scene seed draws the same queries, and the same planner seed gives the same paths.
+  const test::CliResult again =
+      test::runCompare(dir, "motion --json --quiet --no-cache --queries 3 --scene '" +
+                                testing::exampleFile("scenes/mobile-manipulator.yaml") + "'");
+  const nlohmann::json second = nlohmann::json::parse(again.out);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(second["runs"][i]["kaboum"]["length"], json["runs"][i]["kaboum"]["length"]) << i;
+  }
+}
+
 TEST(MotionBenchmark, BadOptionsAreRefused) {
   const test::ScratchDir dir;
   EXPECT_EQ(test::runCompare(dir, "motion --time-limit 0").exitCode, 2);
   EXPECT_EQ(test::runCompare(dir, "motion --sweep-epsilon -1").exitCode, 2);
   EXPECT_EQ(test::runCompare(dir, "motion --problems '" + dir.file("missing") + "'").exitCode, 2);
+  const std::string scene =
+      "--scene '" + testing::exampleFile("scenes/mobile-manipulator.yaml") + "'";
+  EXPECT_EQ(test::runCompare(dir, "motion --queries 0 " + scene).exitCode, 2);
+  EXPECT_EQ(test::runCompare(dir, "motion --robot nobody " + scene).exitCode, 2);
+  EXPECT_EQ(test::runCompare(dir, "motion --problems . " + scene).exitCode, 2);
 }
 
 }  // namespace

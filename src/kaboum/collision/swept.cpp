@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <bit>
+#include <limits>
+#include <numeric>
 
 namespace kaboum::collision {
 
@@ -109,18 +111,63 @@ std::optional<std::size_t> RobotSweep::firstSceneCollision(std::span<const doubl
 
 namespace {
 
-// True if some swept piece of `a` comes within `reach` of some swept piece of `b` (box, then
-// bounding spheres, then GJK).
+// True if swept piece `pb` comes within `reach` of `pa`, whose box inflated by `reach` is `box`
+// (box, then bounding spheres, then GJK).
+bool pieceWithin(const RobotSweep::Piece& pa, const Aabb& box, const RobotSweep::Piece& pb,
+                 double reach) {
+  return box.overlaps(pb.box) && spheresWithin(pa.centre, pa.radius, pb.centre, pb.radius, reach) &&
+         intersects(pa.shape, pb.shape, reach);
+}
+
+// True if some swept piece of `a` comes within `reach` of some swept piece of `b`.
 bool anyPiecesWithin(std::span<const RobotSweep::Piece> a, std::span<const RobotSweep::Piece> b,
                      double reach) {
   for (const RobotSweep::Piece& pa : a) {
     const Aabb box = pa.box.inflated(reach);
     for (const RobotSweep::Piece& pb : b) {
-      if (box.overlaps(pb.box) &&
-          spheresWithin(pa.centre, pa.radius, pb.centre, pb.radius, reach) &&
-          intersects(pa.shape, pb.shape, reach)) {
-        return true;
-      }
+      if (pieceWithin(pa, box, pb, reach)) return true;
+    }
+  }
+  return false;
+}
+
+// The same verdict for many pieces (two robots' whole sweeps), by sweep and prune along one axis:
+// the axis on which the two sweeps' overall boxes overlap least (relative to b's extent), `order`
+// (scratch) b's pieces sorted by their boxes' lower end on it, and each piece of `a` meets only the
+// pieces of b whose ranges on it overlap its inflated box. Allocates nothing once `order` has
+// grown.
+bool anyPiecesWithinSorted(std::span<const RobotSweep::Piece> a,
+                           std::span<const RobotSweep::Piece> b, double reach,
+                           std::vector<std::uint32_t>& order) {
+  if (a.empty() || b.empty()) return false;
+  Aabb all{a[0].box}, bAll{b[0].box};
+  for (const RobotSweep::Piece& pa : a) all = all.merged(pa.box);
+  for (const RobotSweep::Piece& pb : b) bAll = bAll.merged(pb.box);
+  int axis = 0;
+  double least = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    const double overlap = std::min(all.hi[k], bAll.hi[k]) - std::max(all.lo[k], bAll.lo[k]);
+    const double share = overlap / std::max(bAll.hi[k] - bAll.lo[k], 1e-12);
+    if (share < least) {
+      least = share;
+      axis = k;
+    }
+  }
+  order.resize(b.size());
+  std::iota(order.begin(), order.end(), 0U);
+  const auto lower = [&](std::uint32_t i) { return b[i].box.lo[axis]; };
+  std::sort(order.begin(), order.end(),
+            [&](std::uint32_t i, std::uint32_t j) { return lower(i) < lower(j); });
+  double widest = 0;  // of b's boxes on the axis: a box reaching x starts at x - widest or later
+  for (const RobotSweep::Piece& pb : b) {
+    widest = std::max(widest, pb.box.hi[axis] - pb.box.lo[axis]);
+  }
+  for (const RobotSweep::Piece& pa : a) {
+    const Aabb box = pa.box.inflated(reach);
+    auto it = std::lower_bound(order.begin(), order.end(), box.lo[axis] - widest,
+                               [&](std::uint32_t i, double x) { return lower(i) < x; });
+    for (; it != order.end() && lower(*it) <= box.hi[axis]; ++it) {
+      if (pieceWithin(pa, box, b[*it], reach)) return true;
     }
   }
   return false;
@@ -188,7 +235,7 @@ bool sweptVolumesCollide(RobotSweep& a, std::span<const double> qa0, std::span<c
                          std::span<const Attachment> heldB, double margin, double epsilon) {
   const auto piecesA = a.sweep(qa0, qa1, heldA, epsilon);
   const auto piecesB = b.sweep(qb0, qb1, heldB, epsilon);
-  return anyPiecesWithin(piecesA, piecesB, margin + 2 * epsilon);
+  return anyPiecesWithinSorted(piecesA, piecesB, margin + 2 * epsilon, b.order_);
 }
 
 }  // namespace kaboum::collision

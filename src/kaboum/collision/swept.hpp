@@ -3,6 +3,7 @@
 // its support mapping (never built as a hull) with the ε offset added to the query margin.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <vector>
@@ -118,7 +119,14 @@ class RobotSweep {
   std::vector<Piece> piecesI_, piecesJ_;  // scratch: one part's pieces over one sub-step
   std::vector<double> q_;
   std::vector<Piece> pieces_;
+  std::vector<std::uint32_t> order_;  // scratch of sweptVolumesCollide: pieces_ sorted on an axis
   std::size_t samples_ = 0;
+
+  friend bool sweptVolumesCollide(RobotSweep& a, std::span<const double> qa0,
+                                  std::span<const double> qa1, std::span<const Attachment> heldA,
+                                  RobotSweep& b, std::span<const double> qb0,
+                                  std::span<const double> qb1, std::span<const Attachment> heldB,
+                                  double margin, double epsilon);
 };
 
 // Definition 1 (3): whether the swept volumes of two motions (each bounded at `epsilon`; robot a

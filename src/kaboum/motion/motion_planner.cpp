@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <random>
 #include <stdexcept>
@@ -36,6 +37,49 @@ std::vector<double> interpolate(std::span<const double> a, std::span<const doubl
   return q;
 }
 
+// The verdicts of the last kCapacity distinct segments, wrapped around a validator: pruning and
+// shortcutting ask again about segments they or the straight-segment try already decided (the
+// start-goal segment, pairs of waypoints the pruning re-tries after shortcutting, the final
+// certification). The wrapped validator's verdict does not depend on the direction
+// (docs/motion.md), so a segment is remembered in either direction. Allocates nothing once its
+// buffer is full.
+class RememberedVerdicts final : public MotionValidator {
+ public:
+  RememberedVerdicts(MotionValidator& motions, std::size_t dimension)
+      : motions_(motions), dimension_(dimension) {}
+
+  [[nodiscard]] bool isValid(std::span<const double> from, std::span<const double> to) override {
+    const std::size_t count = verdicts_.size();
+    for (std::size_t e = 0; e < count; ++e) {
+      const std::span<const double> a(ends_.data() + 2 * e * dimension_, dimension_);
+      const std::span<const double> b(ends_.data() + (2 * e + 1) * dimension_, dimension_);
+      if ((std::ranges::equal(a, from) && std::ranges::equal(b, to)) ||
+          (std::ranges::equal(a, to) && std::ranges::equal(b, from))) {
+        return verdicts_[e];
+      }
+    }
+    const bool valid = motions_.isValid(from, to);
+    if (count < kCapacity) {
+      ends_.resize(2 * (count + 1) * dimension_);
+      verdicts_.push_back(valid);
+    }
+    const std::size_t e = count < kCapacity ? count : next_;
+    next_ = (e + 1) % kCapacity;
+    std::ranges::copy(from, ends_.begin() + static_cast<std::ptrdiff_t>(2 * e * dimension_));
+    std::ranges::copy(to, ends_.begin() + static_cast<std::ptrdiff_t>((2 * e + 1) * dimension_));
+    verdicts_[e] = valid;
+    return valid;
+  }
+
+ private:
+  static constexpr std::size_t kCapacity = 64;
+  MotionValidator& motions_;
+  std::size_t dimension_;
+  std::vector<double> ends_;  // from and to of each remembered segment
+  std::vector<bool> verdicts_;
+  std::size_t next_ = 0;  // the entry replaced next once full
+};
+
 // Drops waypoints the straight motion can skip: from each kept waypoint, the farthest later one
 // it reaches by a certified segment.
 void pruneWaypoints(Waypoints& path, MotionValidator& motions) {
@@ -51,13 +95,18 @@ void pruneWaypoints(Waypoints& path, MotionValidator& motions) {
 }
 
 // Random partial shortcuts: two points on different segments joined by a certified segment
-// replace the path between them when that is shorter.
+// replace the path between them when that is shorter. Stops after kFruitlessAttempts attempts in a
+// row that shorten nothing: the path is then close to what shortcutting reaches.
 void shortcut(Waypoints& path, MotionValidator& motions, int attempts, std::uint64_t seed) {
+  constexpr int kFruitlessAttempts = 5;
+  int fruitless = 0;
   std::mt19937_64 rng(seed);
   const auto randomSegment = [&] {
     return static_cast<std::size_t>(uniformUnit(rng) * static_cast<double>(path.size() - 1));
   };
-  for (int attempt = 0; attempt < attempts && path.size() > 2; ++attempt) {
+  for (int attempt = 0; attempt < attempts && path.size() > 2 && fruitless < kFruitlessAttempts;
+       ++attempt) {
+    ++fruitless;
     std::size_t i = randomSegment(), j = randomSegment();
     if (i > j) std::swap(i, j);
     const std::vector<double> a = interpolate(path[i], path[i + 1], uniformUnit(rng));
@@ -76,6 +125,7 @@ void shortcut(Waypoints& path, MotionValidator& motions, int attempts, std::uint
     shorter.push_back(b);
     shorter.insert(shorter.end(), path.begin() + static_cast<std::ptrdiff_t>(j + 1), path.end());
     path = std::move(shorter);
+    fruitless = 0;
   }
 }
 
@@ -107,6 +157,20 @@ std::optional<std::string> configurationProblem(const MotionGroup& group, std::s
   if (const auto close = states.firstCollision(q)) {
     return fmt::format("{} and {} are closer than the {:g} m that certified motions keep",
                        world.describe(close->first), world.describe(close->second), clearance);
+  }
+  return std::nullopt;
+}
+
+std::optional<std::vector<double>> randomFreeConfiguration(const MotionGroup& group,
+                                                           double clearance, std::mt19937_64& rng,
+                                                           int draws) {
+  std::vector<double> q(group.dimension());
+  for (int draw = 0; draw < draws; ++draw) {
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      q[i] =
+          group.lower()[i] + kinematics::uniformUnit(rng) * (group.upper()[i] - group.lower()[i]);
+    }
+    if (!configurationProblem(group, q, clearance)) return q;
   }
   return std::nullopt;
 }
@@ -155,7 +219,8 @@ MotionResult planMotion(const MotionGroup& group, std::span<const double> start,
   const double epsilon = ends.epsilon;
   statistics.sweepEpsilon = epsilon;
   WorldStateChecker states(group, epsilon, &statistics.checks);
-  SweptMotionValidator motions(group, epsilon, &statistics.checks);
+  SweptMotionValidator sweeps(group, epsilon, &statistics.checks);
+  RememberedVerdicts motions(sweeps, group.dimension());
   if (motions.isValid(start, goal)) {
     statistics.straight = true;
     result.path = {{start.begin(), start.end()}, {goal.begin(), goal.end()}};
@@ -164,7 +229,7 @@ MotionResult planMotion(const MotionGroup& group, std::span<const double> start,
     return query.finish(PlannerStatus::Solved);
   }
   const Clock::time_point planning = Clock::now();
-  SamplingResult sampled = planWithOmpl(group, states, motions, start, goal, options,
+  SamplingResult sampled = planWithOmpl(group, states, sweeps, start, goal, options,
                                         options.timeLimit - query.elapsedSeconds());
   statistics.planningSeconds = secondsSince(planning);
   if (sampled.status != PlannerStatus::Solved) {

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstdint>
 #include <optional>
+#include <random>
 #include <span>
 #include <string>
 #include <vector>
@@ -111,6 +112,14 @@ QueryEpsilon sweepEpsilonForEnds(const MotionGroup& group, std::span<const doubl
 // a robot) so that no certified motion can leave q, naming both parties — or nullopt when it can.
 std::optional<std::string> configurationProblem(const MotionGroup& group, std::span<const double> q,
                                                 double clearance);
+
+// A configuration of `group` drawn uniformly within its joint limits (kinematics::uniformUnit, the
+// same on every platform) until one has no configurationProblem at `clearance`, so that certified
+// motions can leave it: the random queries of benchmarks and property tests. nullopt after `draws`
+// draws.
+std::optional<std::vector<double>> randomFreeConfiguration(const MotionGroup& group,
+                                                           double clearance, std::mt19937_64& rng,
+                                                           int draws = 100000);
 
 // Sum of the Euclidean joint-space lengths of the segments.
 double pathLength(const Waypoints& path);
