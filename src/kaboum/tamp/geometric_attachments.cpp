@@ -74,16 +74,21 @@ constexpr std::string_view kNotAnArm = "not a robot with a tool nor a tool of th
 constexpr std::string_view kNotAMovableObject = "not a movable object of the scene";
 constexpr std::string_view kNotALocation = "not a location of the scene";
 
-// Each procedure and its number of arguments (robots, objects, locations by name).
-const std::vector<std::pair<std::string, std::size_t>>& signatures() {
-  static const std::vector<std::pair<std::string, std::size_t>> table{{"move", 1},
-                                                                      {"pickUp", 2},
-                                                                      {"putDown", 3},
-                                                                      {"isColliding", 0},
-                                                                      {"isReachable", 2},
-                                                                      {"isInside", 2},
-                                                                      {"isOnSupportSurface", 1},
-                                                                      {"freeSpaceFound", 2}};
+// Each procedure: its name, its number of arguments (robots, objects, locations by name), and
+// whether it is an effect (else a condition checker).
+struct Signature {
+  std::string name;
+  std::size_t arity = 0;
+  bool effect = false;
+};
+
+const std::vector<Signature>& signatures() {
+  static const std::vector<Signature> table{
+      {"move", 1, true},           {"moveHome", 1, true},
+      {"pickUp", 2, true},         {"putDown", 3, true},
+      {"isColliding", 0, false},   {"isReachable", 2, false},
+      {"isInside", 2, false},      {"isOnSupportSurface", 1, false},
+      {"freeSpaceFound", 2, false}};
   return table;
 }
 
@@ -92,19 +97,20 @@ const std::vector<std::pair<std::string, std::size_t>>& signatures() {
 const std::vector<std::string>& GeometricAttachments::procedureNames() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> list;
-    for (const auto& entry : signatures()) list.push_back(entry.first);
+    for (const Signature& signature : signatures()) list.push_back(signature.name);
     return list;
   }();
   return names;
 }
 
 bool GeometricAttachments::isGeometricEffect(const std::string& name) {
-  return name == "move" || name == "moveHome" || name == "pickUp" || name == "putDown";
+  return std::any_of(signatures().begin(), signatures().end(),
+                     [&](const Signature& s) { return s.effect && s.name == name; });
 }
 
 std::size_t GeometricAttachments::arity(const std::string& name) {
-  for (const auto& [procedure, count] : signatures()) {
-    if (procedure == name) return count;
+  for (const Signature& signature : signatures()) {
+    if (signature.name == name) return signature.arity;
   }
   throw std::invalid_argument("no geometric attachment '" + name + "'");
 }
