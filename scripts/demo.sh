@@ -1,16 +1,18 @@
 #!/usr/bin/env bash
-# The main job: installs dependencies, builds kaboum, then bounds a real robot mesh (a KUKA KR5 link
-# from Debian's dart-doc) from outside and inside and verifies both results.
+# The main job: installs dependencies, builds kaboum, then solves the Bartender scenario with
+# geometry (two KUKA KR5 arms from Debian's dart-doc; a plan that branches on sensing, every path
+# certified), and checks the plan file independently on the original meshes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 cmake --preset release
 cmake --build --preset release --target kaboum_cli
-mesh=/usr/share/doc/dart/data/urdf/KR5/meshes/forearm.STL
 mkdir -p out
-echo "== outer bounding mesh of $mesh within 1% of its diagonal"
-build/release/kaboum bound "$mesh" -o out/kr5-forearm-outer.obj --outer --epsilon 1%
-build/release/kaboum check "$mesh" out/kr5-forearm-outer.obj --outer
-echo "== inner bounding mesh within 1% of its diagonal"
-build/release/kaboum bound "$mesh" -o out/kr5-forearm-inner.obj --inner --epsilon 1%
-build/release/kaboum check "$mesh" out/kr5-forearm-inner.obj --inner
+example=examples/bartender
+echo "== kaboum solve: $example (problem-1: one bottle of unknown content)"
+build/release/kaboum solve "$example/domain.pddl" "$example/problem-1.pddl" "$example/scene.yaml" \
+  --search astar --plan-out out/bartender-plan.json
+echo "== kaboum verify-plan: out/bartender-plan.json"
+build/release/kaboum verify-plan "$example/domain.pddl" "$example/problem-1.pddl" \
+  "$example/scene.yaml" out/bartender-plan.json --quiet
+echo "plan file: out/bartender-plan.json (docs/plan-format.md)"
