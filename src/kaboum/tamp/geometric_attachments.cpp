@@ -305,6 +305,41 @@ bool GeometricAttachments::moveHome(const AttachmentArgs& args, std::span<double
   return finish(std::move(geometry), reached, writes);
 }
 
+bool GeometricAttachments::firstSample(const std::string& procedure, const AttachmentArgs& args,
+                                       const GeometricState& state, int samples,
+                                       std::span<double> writes, const SampleAttempt& attempt) {
+  std::mt19937_64 rng = generator(procedure, args);
+  std::string reason = "no samples";
+  for (int sample = 0; sample < samples; ++sample) {
+    ActionGeometry geometry{procedure, {}, *map_.find(state), 0, {}};
+    for (std::size_t i = 0; i < args.objects.size(); ++i) {
+      geometry.arguments.emplace_back(args.name(i));
+    }
+    GeometricState reached;
+    reason = attempt(rng, geometry.steps, reached);
+    if (reason.empty()) return finish(std::move(geometry), reached, writes);
+  }
+  return fail(procedure, args, reason);
+}
+
+namespace {
+
+// The four steps of a pick or a place: the motion there, the approach, the gripper event, the
+// retreat.
+void appendManipulation(std::vector<GeometricStep>& steps, std::size_t robot, std::size_t tool,
+                        GeometricStep::Kind motionKind, motion::Waypoints motion,
+                        motion::Waypoints approach, GeometricStep::Kind event, std::size_t object,
+                        const Pose& pose, motion::Waypoints retreat) {
+  steps.push_back({motionKind, robot, tool, std::move(motion), 0, Pose::Identity()});
+  steps.push_back(
+      {GeometricStep::Kind::Approach, robot, tool, std::move(approach), 0, Pose::Identity()});
+  steps.push_back({event, robot, tool, {}, object, pose});
+  steps.push_back(
+      {GeometricStep::Kind::Retreat, robot, tool, std::move(retreat), 0, Pose::Identity()});
+}
+
+}  // namespace
+
 int GeometricAttachments::toolLink(const Arm& arm) const {
   return world_->robots()[arm.robot]
       .collision.model()
@@ -360,13 +395,9 @@ std::string GeometricAttachments::tryGrasp(const GeometricState& state, const Ar
   if (lift.status != PlannerStatus::Solved) return "lift: " + lift.message;
   reached = std::move(atGrasp);
   reached.robots[arm.robot].configuration = lift.path.back();
-  steps.push_back({GeometricStep::Kind::Transit, arm.robot, arm.tool, std::move(transit.path), 0,
-                   Pose::Identity()});
-  steps.push_back({GeometricStep::Kind::Approach, arm.robot, arm.tool, std::move(approach.path), 0,
-                   Pose::Identity()});
-  steps.push_back({GeometricStep::Kind::Grasp, arm.robot, arm.tool, {}, object, objectInLink});
-  steps.push_back({GeometricStep::Kind::Retreat, arm.robot, arm.tool, std::move(lift.path), 0,
-                   Pose::Identity()});
+  appendManipulation(steps, arm.robot, arm.tool, GeometricStep::Kind::Transit,
+                     std::move(transit.path), std::move(approach.path), GeometricStep::Kind::Grasp,
+                     object, objectInLink, std::move(lift.path));
   return {};
 }
 
@@ -384,16 +415,11 @@ bool GeometricAttachments::pickUp(const AttachmentArgs& args, std::span<double> 
   if (!state.robots[picking->robot].heldObjects.empty()) {
     return fail("pickUp", args, "the robot holds an object");
   }
-  std::mt19937_64 rng = generator("pickUp", args);
-  std::string reason = "no samples";
-  for (int sample = 0; sample < options_.graspSamples; ++sample) {
-    ActionGeometry geometry{
-        "pickUp", {std::string(args.name(0)), std::string(args.name(1))}, *map_.find(state), 0, {}};
-    GeometricState reached;
-    reason = tryGrasp(state, *picking, *target, rng, geometry.steps, reached);
-    if (reason.empty()) return finish(std::move(geometry), reached, writes);
-  }
-  return fail("pickUp", args, reason);
+  return firstSample(
+      "pickUp", args, state, options_.graspSamples, writes,
+      [&](std::mt19937_64& rng, std::vector<GeometricStep>& steps, GeometricState& reached) {
+        return tryGrasp(state, *picking, *target, rng, steps, reached);
+      });
 }
 
 FreeSpaceOptions GeometricAttachments::placementOptions(std::mt19937_64& rng) const {
@@ -469,13 +495,9 @@ std::string GeometricAttachments::tryPlacement(const GeometricState& state, cons
   if (retreat.status != PlannerStatus::Solved) return "retreat: " + retreat.message;
   reached = std::move(atPlace);
   reached.robots[arm.robot].configuration = retreat.path.back();
-  steps.push_back({GeometricStep::Kind::Transfer, arm.robot, arm.tool, std::move(transfer.path), 0,
-                   Pose::Identity()});
-  steps.push_back({GeometricStep::Kind::Approach, arm.robot, arm.tool, std::move(descent.path), 0,
-                   Pose::Identity()});
-  steps.push_back({GeometricStep::Kind::Release, arm.robot, arm.tool, {}, object, placed});
-  steps.push_back({GeometricStep::Kind::Retreat, arm.robot, arm.tool, std::move(retreat.path), 0,
-                   Pose::Identity()});
+  appendManipulation(steps, arm.robot, arm.tool, GeometricStep::Kind::Transfer,
+                     std::move(transfer.path), std::move(descent.path),
+                     GeometricStep::Kind::Release, object, placed, std::move(retreat.path));
   return {};
 }
 
@@ -494,20 +516,11 @@ bool GeometricAttachments::putDown(const AttachmentArgs& args, std::span<double>
   if (std::find(held.begin(), held.end(), *target) == held.end()) {
     return fail("putDown", args, "the robot does not hold the object");
   }
-  std::mt19937_64 rng = generator("putDown", args);
-  std::string reason = "no samples";
-  for (int sample = 0; sample < options_.placementSamples; ++sample) {
-    ActionGeometry geometry{
-        "putDown",
-        {std::string(args.name(0)), std::string(args.name(1)), std::string(args.name(2))},
-        *map_.find(state),
-        0,
-        {}};
-    GeometricState reached;
-    reason = tryPlacement(state, *placing, *target, *where, rng, geometry.steps, reached);
-    if (reason.empty()) return finish(std::move(geometry), reached, writes);
-  }
-  return fail("putDown", args, reason);
+  return firstSample(
+      "putDown", args, state, options_.placementSamples, writes,
+      [&](std::mt19937_64& rng, std::vector<GeometricStep>& steps, GeometricState& reached) {
+        return tryPlacement(state, *placing, *target, *where, rng, steps, reached);
+      });
 }
 
 // isInside(object, location): every vertex of the object's pieces in the location's region.

@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <random>
@@ -166,6 +167,14 @@ class GeometricAttachments {
   [[nodiscard]] FreeSpaceOptions placementOptions(std::mt19937_64& rng) const;
   [[nodiscard]] std::vector<std::size_t> facesForGrasp(std::size_t object,
                                                        const Pose& tcpInObject) const;
+  // One sample of an effect: on success an empty string, the steps, and the state reached.
+  using SampleAttempt = std::function<std::string(
+      std::mt19937_64& rng, std::vector<GeometricStep>& steps, GeometricState& reached)>;
+  // Up to `samples` attempts with the call's generator; the first that works is recorded (finish),
+  // else the last reason is the failure.
+  bool firstSample(const std::string& procedure, const symbolic::AttachmentArgs& args,
+                   const GeometricState& state, int samples, std::span<double> writes,
+                   const SampleAttempt& attempt);
   // Records the geometry and writes the new state's identifier.
   bool finish(ActionGeometry geometry, const GeometricState& reached, std::span<double> writes);
   // Counts a failed call of `procedure` and keeps `reason` as the last failure.
