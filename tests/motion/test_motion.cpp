@@ -298,7 +298,8 @@ TEST(MotionPlanner, TheComauPairMovesBothArmsBetweenRandomFreeConfigurations) {
     const MotionResult result = planMotion(group, *start, *goal);
     ASSERT_EQ(result.status, PlannerStatus::Solved) << "query " << query << ": " << result.message;
     expectCertified(group, result);
-    EXPECT_TRUE(verify::verifyPath(reference, {{0, 1}, result.path, {}, std::nullopt}).collisionFree())
+    EXPECT_TRUE(
+        verify::verifyPath(reference, {{0, 1}, result.path, {}, std::nullopt}).collisionFree())
         << "query " << query;
   }
 }

@@ -395,9 +395,8 @@ TEST(SolveCli, BadInputGivesOneLineAndExitCodeTwoAndNoPlanExitCodeOne) {
       "(define (problem p) (:domain pick-and-place) (:objects kr5 - robot block - object left "
       "air - location) (:init (handempty kr5) (at block left) (= (geometry) 0)) (:goal (at block "
       "air)))");
-  run = test::runCli(
-      dir, "solve " + domain + " " + intoAir + " '" + air + "' --time-limit 2" +
-               test::sharedCacheOption());
+  run = test::runCli(dir, "solve " + domain + " " + intoAir + " '" + air + "' --time-limit 2" +
+                              test::sharedCacheOption());
   EXPECT_EQ(run.exitCode, 1) << run.err;
   EXPECT_PRED_FORMAT2(::testing::IsSubstring, "no plan: time-limit", run.err);
   EXPECT_PRED_FORMAT2(::testing::IsSubstring, "putDown(kr5, block, air): no free placement",
