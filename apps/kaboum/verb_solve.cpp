@@ -66,7 +66,6 @@ void printSummary(const tamp::SolveResult& result) {
 
 int run(Options& options) {
   options.solve.geometry.motion.timeLimit = options.motionTimeLimit;
-  options.solve.geometry.motion.seed = options.solve.geometry.seed;
   // The PDDL first: its mistakes show before the scene's preprocessing.
   symbolic::ContingentProblem problem =
       symbolic::loadContingent(options.files.domain, options.files.problem);

@@ -206,28 +206,27 @@ motion::MotionResult GeometricAttachments::plan(const GeometricState& context, c
   const motion::MotionGroup group(*world_, context, {arm.robot});
   motion::MotionResult result =
       motion::planMotion(group, context.robots[arm.robot].configuration, goal, options_.motion);
-  ++statistics_.motionQueries;
-  statistics_.motionSeconds += result.statistics.totalSeconds;
-  statistics_.checks.stateChecks += result.statistics.checks.stateChecks;
-  statistics_.checks.stateSeconds += result.statistics.checks.stateSeconds;
-  statistics_.checks.motionChecks += result.statistics.checks.motionChecks;
-  statistics_.checks.motionSeconds += result.statistics.checks.motionSeconds;
+  record(result);
   return result;
 }
 
 motion::MotionResult GeometricAttachments::line(const GeometricState& context, const Arm& arm,
                                                 const Pose& target) {
   const motion::MotionGroup group(*world_, context, {arm.robot});
-  const Stopwatch clock;
   motion::MotionResult result = motion::planCartesian(
       group, tool(arm), context.robots[arm.robot].configuration, target, options_.motion);
-  ++statistics_.motionQueries;
-  statistics_.motionSeconds += clock.seconds();
-  statistics_.checks.stateChecks += result.statistics.checks.stateChecks;
-  statistics_.checks.stateSeconds += result.statistics.checks.stateSeconds;
-  statistics_.checks.motionChecks += result.statistics.checks.motionChecks;
-  statistics_.checks.motionSeconds += result.statistics.checks.motionSeconds;
+  record(result);
   return result;
+}
+
+void GeometricAttachments::record(const motion::MotionResult& result) {
+  const motion::MotionStatistics& query = result.statistics;
+  ++statistics_.motionQueries;
+  statistics_.motionSeconds += query.totalSeconds;
+  statistics_.checks.stateChecks += query.checks.stateChecks;
+  statistics_.checks.stateSeconds += query.checks.stateSeconds;
+  statistics_.checks.motionChecks += query.checks.motionChecks;
+  statistics_.checks.motionSeconds += query.checks.motionSeconds;
 }
 
 bool GeometricAttachments::finish(ActionGeometry geometry, const GeometricState& reached,

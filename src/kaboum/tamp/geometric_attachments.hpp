@@ -154,6 +154,8 @@ class GeometricAttachments {
   motion::MotionResult plan(const GeometricState& context, const Arm& arm,
                             std::span<const double> goal);
   motion::MotionResult line(const GeometricState& context, const Arm& arm, const Pose& target);
+  // Adds one motion query's counts and times to the statistics.
+  void record(const motion::MotionResult& result);
   // The link a tool is on.
   [[nodiscard]] int toolLink(const Arm& arm) const;
   // One grasp sample of pickUp: on success an empty string, the steps, and the state reached.
