@@ -9,6 +9,7 @@
 #include <queue>
 #include <set>
 #include <sstream>
+#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -52,7 +53,12 @@ class AndOrSearch {
                                      ? options.heuristic
                                      : std::string("blind"),
                                  task.task())),
-        deadline_(options.limits, kClockPeriod) {}
+        deadline_(options.limits, kClockPeriod) {
+    if (heuristic_->excludes()) learned_ = makeHeuristic(options.heuristic, task.task());
+    const std::size_t operators = task.task().operators.size();
+    failures_.assign(operators, 0);
+    successes_.assign(operators, 0);
+  }
 
   ContingentResult run() {
     ContingentResult result;
@@ -84,6 +90,8 @@ class AndOrSearch {
   struct Candidate {
     int score = 0;
     int op = 0;
+    // Its effect applicators (geometry) run when the search reaches it; `score` is its preview's.
+    bool deferred = false;
     int root = 0;  // index into the candidate's outcomes
     std::vector<Outcome> outcomes;
   };
@@ -98,18 +106,44 @@ class AndOrSearch {
     return it->second;
   }
 
+  // Worst-world value of `belief`. Once actions that call effect applicators have failed and never
+  // succeeded (geometrically infeasible so far), the value is that of a relaxation without them,
+  // so that the search heads for what the geometry allows (bottles through the shared region when
+  // one robot cannot reach the goal); a state that relaxation cannot solve comes after all the
+  // others (kUnlearned plus the full value). Dead ends are those of the full relaxation only.
   int heuristic(const Belief& belief) {
+    const int full = worstValue(belief, *heuristic_, worldValue_);
+    if (full == Heuristic::kDeadEnd || excluded_ == 0) return full;
+    const int learned = worstValue(belief, *learned_, learnedValue_);
+    return learned == Heuristic::kDeadEnd ? kUnlearned + full : learned;
+  }
+
+  int worstValue(const Belief& belief, Heuristic& estimate, std::vector<int>& cache) {
     int worst = 0;
     for (const std::uint32_t w : belief) {
-      if (w >= worldValue_.size()) worldValue_.resize(task_.worldCount(), -1);
-      if (worldValue_[w] < 0) {
-        worldValue_[w] = heuristic_->evaluate(task_.world(w), nullptr);
+      if (w >= cache.size()) cache.resize(task_.worldCount(), -1);
+      if (cache[w] < 0) {
+        cache[w] = estimate.evaluate(task_.world(w), nullptr);
         ++stats_.evaluated;
       }
-      worst = std::max(worst, worldValue_[w]);
+      worst = std::max(worst, cache[w]);
       if (worst == Heuristic::kDeadEnd) break;
     }
     return worst;
+  }
+
+  // Counts whether action `op`, which calls effect applicators, was feasible, and leaves it out of
+  // the learned relaxation while it has only failed.
+  void learn(int op, bool feasible) {
+    if (!learned_) return;
+    const auto o = static_cast<std::size_t>(op);
+    const bool wasExcluded = failures_[o] > 0 && successes_[o] == 0;
+    ++(feasible ? successes_ : failures_)[o];
+    const bool excluded = failures_[o] > 0 && successes_[o] == 0;
+    if (excluded == wasExcluded) return;
+    learned_->exclude(op, excluded);
+    excluded_ += excluded ? 1 : -1;
+    learnedValue_.assign(learnedValue_.size(), -1);
   }
 
   // Splits `belief` eagerly on every atom the agent now knows whether (Figure 3.2's branch(φ))
@@ -168,25 +202,54 @@ class AndOrSearch {
     if (const auto limit = deadline_.reached(stats_.expanded, bytes)) throw LimitReached{*limit};
   }
 
-  // Applicable actions of knowledge state `id` with their outcome trees; relaxed dead ends dropped.
-  // Sensing actions (outcomes that branch) come first, then by worst-world heuristic value.
+  // Applies `op` to knowledge state `id`, effect applicators included, into `candidate` with its
+  // outcome tree and worst-world heuristic value. False if infeasible, a no-op or a relaxed dead
+  // end.
+  bool evaluate(int op, int id, Candidate& candidate) {
+    const Belief& belief = *beliefs_[id];
+    Belief next;
+    const bool feasible = task_.apply(op, belief, next);
+    if (task_.callsEffectApplicator(op)) learn(op, feasible);
+    if (!feasible || next == belief) return false;
+    ++stats_.generated;
+    candidate.op = op;
+    candidate.deferred = false;
+    candidate.outcomes.clear();
+    candidate.root = outcome(std::move(next), candidate.outcomes);
+    candidate.score = 0;
+    for (const Outcome& o : candidate.outcomes) {
+      if (o.belief >= 0)
+        candidate.score = std::max(candidate.score, heuristic(*beliefs_[o.belief]));
+    }
+    if (candidate.score == Heuristic::kDeadEnd) {
+      ++stats_.deadEnds;
+      return false;
+    }
+    return true;
+  }
+
+  // Applicable actions of knowledge state `id`; relaxed dead ends dropped. An action that calls
+  // effect applicators is deferred: scored by its preview (its symbolic effects), its geometry
+  // computed only when the search reaches it, as a lazy search evaluates successors. The others
+  // come with their outcome trees; sensing actions (outcomes that branch) first, then by score.
   std::vector<Candidate> expand(int id) {
     const Belief& belief = *beliefs_[id];
     std::vector<Candidate> candidates;
-    Belief next;
+    Belief preview;
     for (std::size_t op = 0; op < task_.task().operators.size(); ++op) {
-      if (!task_.applicable(static_cast<int>(op), belief)) continue;
-      if (!task_.apply(static_cast<int>(op), belief, next) || next == belief) continue;
-      ++stats_.generated;
+      const int o = static_cast<int>(op);
+      if (!task_.applicable(o, belief)) continue;
       Candidate candidate;
-      candidate.op = static_cast<int>(op);
-      candidate.root = outcome(Belief(next), candidate.outcomes);
-      for (const Outcome& o : candidate.outcomes) {
-        if (o.belief >= 0)
-          candidate.score = std::max(candidate.score, heuristic(*beliefs_[o.belief]));
-      }
-      if (candidate.score == Heuristic::kDeadEnd) {
-        ++stats_.deadEnds;
+      if (task_.callsEffectApplicator(o)) {
+        task_.preview(o, belief, preview);
+        candidate.op = o;
+        candidate.deferred = true;
+        candidate.score = heuristic(preview);
+        if (candidate.score == Heuristic::kDeadEnd) {
+          ++stats_.deadEnds;
+          continue;
+        }
+      } else if (!evaluate(o, id, candidate)) {
         continue;
       }
       candidates.push_back(std::move(candidate));
@@ -220,50 +283,76 @@ class AndOrSearch {
     }
     if (state_[root] != kOpen || depth > options_.maxDepth) return -1;
     struct SearchNode {
-      int belief;
+      int belief;  // -1 until a deferred action is evaluated
       int parent;
       int op;
       long steps;  // actions from `root`
     };
     std::vector<SearchNode> nodes{{root, -1, -1, 0}};
     std::unordered_set<int> seen{root};
-    using Entry = std::pair<long, std::size_t>;  // priority, node (ties: first in, first out)
+    // Times each symbolic transition (the parent's symbolicKey and the action) was generated.
+    std::unordered_map<std::uint64_t, int> transitions;
+    // Round, priority, node (ties: first in, first out). A transition generated before (from
+    // another geometric state of the same symbolic state) waits for the next round: a new
+    // geometric state is another sample of that transition, as the thesis's random-seed argument
+    // gives (§6.1.2), tried once the untried transitions are used up, so the search stays complete
+    // without enumerating geometric variants of one symbolic state.
+    using Entry = std::tuple<int, long, std::size_t>;
     std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
-    open.push({0, 0});
+    open.push({0, 0, 0});
     state_[root] = kOnPath;
     std::size_t found = 0;
     int ending = -1;
+    // Ends the search at node `index` with the plan node `next` after it.
+    const auto finish = [&](std::size_t index, int next) {
+      found = index;
+      ending = next;
+    };
     while (!open.empty() && ending < 0) {
-      const std::size_t index = open.top().second;
+      const std::size_t index = std::get<2>(open.top());
       open.pop();
+      checkLimits();
+      if (nodes[index].belief < 0) {
+        const auto parent = static_cast<std::size_t>(nodes[index].parent);
+        Candidate candidate;
+        if (!evaluate(nodes[index].op, nodes[parent].belief, candidate)) continue;
+        if (candidate.outcomes.size() > 1) {
+          const int rest = solveOutcome(candidate.outcomes, candidate.root, depth + 1);
+          if (rest >= 0) finish(parent, actionNode(candidate.op, rest));
+          continue;
+        }
+        const int child = candidate.outcomes[0].belief;
+        if (state_[child] != kOpen || !seen.insert(child).second) continue;
+        nodes[index].belief = child;
+      }
       const int id = nodes[index].belief;
       if (solved_[id] >= 0) {
         ++stats_.reused;
-        found = index;
-        ending = solved_[id];
+        finish(index, solved_[id]);
         break;
       }
       if (task_.isGoal(*beliefs_[id])) {
-        found = index;
-        ending = addNode({});
+        finish(index, addNode({}));
         break;
       }
-      checkLimits();
       ++stats_.expanded;
       const std::vector<Candidate> candidates = expand(id);
+      const std::uint64_t symbolic = task_.symbolicKey(*beliefs_[id]);
       for (const Candidate& candidate : candidates) {
-        if (candidate.outcomes.size() == 1) {
-          const int child = candidate.outcomes[0].belief;
-          if (state_[child] != kOpen || !seen.insert(child).second) continue;
-          nodes.push_back({child, static_cast<int>(index), candidate.op, nodes[index].steps + 1});
-          open.push(
-              {priority(nodes.back().steps, candidate.score, nodes.size() - 1), nodes.size() - 1});
+        if (candidate.deferred || candidate.outcomes.size() == 1) {
+          const int child = candidate.deferred ? -1 : candidate.outcomes[0].belief;
+          if (child >= 0 && (state_[child] != kOpen || !seen.insert(child).second)) continue;
+          const long steps = nodes[index].steps + 1;
+          nodes.push_back({child, static_cast<int>(index), candidate.op, steps});
+          const std::uint64_t transition =
+              symbolic ^ (static_cast<std::uint64_t>(candidate.op) * 0x9e3779b97f4a7c15ull);
+          open.push({transitions[transition]++, priority(steps, candidate.score, nodes.size() - 1),
+                     nodes.size() - 1});
           continue;
         }
         const int rest = solveOutcome(candidate.outcomes, candidate.root, depth + 1);
         if (rest < 0) continue;
-        found = index;
-        ending = actionNode(candidate.op, rest);
+        finish(index, actionNode(candidate.op, rest));
         break;
       }
     }
@@ -306,6 +395,12 @@ class AndOrSearch {
   const ContingentOptions& options_;
   OrMode mode_;
   std::unique_ptr<Heuristic> heuristic_;
+  std::unique_ptr<Heuristic> learned_;  // heuristic_ without the actions found infeasible
+  std::vector<int> failures_;           // per operator: infeasible applications
+  std::vector<int> successes_;          // per operator: feasible applications
+  int excluded_ = 0;                    // operators left out of learned_
+  std::vector<int> learnedValue_;       // per world: learned_'s value, -1 until computed
+  static constexpr int kUnlearned = 1 << 16;
   Deadline deadline_;
   std::unordered_map<Belief, int, BeliefHash> ids_;
   std::vector<const Belief*> beliefs_;

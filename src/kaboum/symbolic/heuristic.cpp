@@ -41,10 +41,15 @@ class RelaxedHeuristic : public Heuristic {
     }
     operatorCost_.resize(unaries);
     marked_.assign(task.operators.size(), 0);
+    excluded_.assign(task.operators.size(), 0);
     factMarked_.assign(facts, 0);
   }
 
   bool admissible() const override { return kind_ == Kind::Max; }
+  bool excludes() const override { return true; }
+  void exclude(int op, bool excluded) override {
+    excluded_[static_cast<std::size_t>(op)] = excluded ? 1 : 0;
+  }
 
   int evaluate(StateView state, std::vector<int>* preferred) override {
     if (preferred != nullptr) preferred->clear();
@@ -67,6 +72,8 @@ class RelaxedHeuristic : public Heuristic {
   }
 
   void fire(int unary) {
+    const int op = relaxed_.source(unary);
+    if (op >= 0 && excluded_[static_cast<std::size_t>(op)] != 0) return;
     const int cost = operatorCost_[unary] + (relaxed_.source(unary) >= 0 ? 1 : 0);
     for (const int fact : relaxed_.effects(unary)) reach(fact, cost, unary);
   }
@@ -135,7 +142,7 @@ class RelaxedHeuristic : public Heuristic {
   std::vector<int> preCount_, factCost_, supporter_, unsatisfied_, operatorCost_;
   std::vector<std::vector<int>> buckets_;
   std::vector<int> stack_, touchedFacts_, touchedOps_, stateFacts_;
-  std::vector<std::uint8_t> marked_, factMarked_;
+  std::vector<std::uint8_t> marked_, excluded_, factMarked_;
 };
 
 }  // namespace

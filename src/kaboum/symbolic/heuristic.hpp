@@ -22,6 +22,11 @@ class Heuristic {
   // the operators the heuristic recommends (may be empty; order is deterministic).
   virtual int evaluate(StateView state, std::vector<int>* preferred) = 0;
   virtual bool admissible() const = 0;
+  // Whether the heuristic can leave operators out (exclude()); the relaxation heuristics can.
+  virtual bool excludes() const { return false; }
+  // Leaves ground operator `op` out of the relaxation, or puts it back: the estimate becomes that
+  // of the task without the operators found infeasible (by geometry, say). No-op unless excludes().
+  virtual void exclude(int /*op*/, bool /*excluded*/) {}
 };
 
 // Names accepted by makeHeuristic: "ff", "add", "max", "blind", "lmcount" (landmarks.hpp).

@@ -397,9 +397,27 @@ bool KnowledgeTask::isGoal(const Belief& belief) {
 }
 
 bool KnowledgeTask::apply(int op, const Belief& belief, Belief& out) {
+  return applyInWorlds(op, belief, out, true);
+}
+
+void KnowledgeTask::preview(int op, const Belief& belief, Belief& out) {
+  applyInWorlds(op, belief, out, false);
+}
+
+bool KnowledgeTask::callsEffectApplicator(int op) const {
+  const Operator& o = task_.operators[op];
+  return !o.effect.moduleCalls.empty() ||
+         std::any_of(o.conditional.begin(), o.conditional.end(),
+                     [](const ConditionalEffect& c) { return !c.effect.moduleCalls.empty(); });
+}
+
+bool KnowledgeTask::applyInWorlds(int op, const Belief& belief, Belief& out,
+                                  bool effectApplicators) {
   out.clear();
   for (const std::uint32_t w : belief) {
-    if (!evaluator_.apply(task_.operators[op], world(w), scratch_)) return false;
+    if (!evaluator_.apply(task_.operators[op], world(w), scratch_, effectApplicators)) {
+      return false;
+    }
     storeForgetting(out);
   }
   std::sort(out.begin(), out.end());
@@ -539,6 +557,38 @@ std::uint32_t KnowledgeTask::applyIn(int op, std::uint32_t w) {
   // Forgetting changes what the agent knows, not the true world.
   for (const AtomId marker : forgetAtoms_) setBit(scratch_, marker, false);
   return store(scratch_);
+}
+
+std::uint64_t KnowledgeTask::symbolicKey(const Belief& belief) {
+  if (attachmentWritten_.empty()) {
+    attachmentWritten_.assign(task_.fluentNames.size() + 1, false);  // +1: never empty again
+    for (const GroundModuleCall& call : task_.moduleCalls) {
+      for (const FluentId f : call.writes) attachmentWritten_[static_cast<std::size_t>(f)] = true;
+    }
+  }
+  if (symbolicHash_.size() < worlds_.size()) symbolicHash_.resize(worlds_.size(), 0);
+  const std::size_t fluentOffset = evaluator_.layout().fluentOffset();
+  std::uint64_t key = 0;
+  for (const std::uint32_t w : belief) {
+    std::uint64_t& term = symbolicHash_[w];
+    if (term == 0) {
+      const std::span<const std::uint64_t> words = worlds_.get(w);
+      std::uint64_t h = 1469598103934665603ull;
+      for (std::size_t i = 0; i < words.size(); ++i) {
+        if (i >= fluentOffset && attachmentWritten_[i - fluentOffset]) continue;
+        h = (h ^ words[i]) * 1099511628211ull;
+      }
+      // splitmix64's finaliser, so that the sum over worlds mixes well; never 0.
+      h ^= h >> 30;
+      h *= 0xbf58476d1ce4e5b9ull;
+      h ^= h >> 27;
+      h *= 0x94d049bb133111ebull;
+      h ^= h >> 31;
+      term = h | 1u;
+    }
+    key += term;
+  }
+  return key;
 }
 
 }  // namespace kaboum::symbolic

@@ -51,6 +51,11 @@ class KnowledgeTask {
   bool isGoal(const Belief& belief);
   // Applies operator `op` in every world; false if an attachment reports it infeasible somewhere.
   bool apply(int op, const Belief& belief, Belief& out);
+  // apply() without calling effect applicators (the values they write stay as they are): the
+  // symbolic part of the successor, before paying for its geometry.
+  void preview(int op, const Belief& belief, Belief& out);
+  // Whether applying `op` calls an effect applicator (in its effect or a conditional one).
+  bool callsEffectApplicator(int op) const;
 
   // An atom the agent will know at run time but does not know now (Kw(p), neither K(p) nor K(¬p)):
   // the planner branches on it. -1 if none.
@@ -79,6 +84,11 @@ class KnowledgeTask {
   bool isGoalIn(std::uint32_t world);
   std::uint32_t applyIn(int op, std::uint32_t world);  // PackedSet::kMissing if infeasible
 
+  // A hash of what `belief` knows apart from the values that effect applicators write (opaque
+  // handles such as a geometric state's identifier, thesis Definition 5): equal for knowledge
+  // states that differ only in such values, independent of world order.
+  std::uint64_t symbolicKey(const Belief& belief);
+
   AtomId findAtom(const std::string& name) const;   // "(p a b)"; -1 if unknown
   int findOperator(const std::string& name) const;  // "(a x y)"; -1 if unknown
   // Operators sharing `op`'s name (a disjunctive precondition is split into one per disjunct).
@@ -90,6 +100,7 @@ class KnowledgeTask {
   bool kvHolds(AtomId atom, const Belief& belief);
   bool kQueryHolds(AtomId atom, const Belief& belief);
   void storeForgetting(Belief& out);
+  bool applyInWorlds(int op, const Belief& belief, Belief& out, bool effectApplicators);
   bool fluentKnown(FluentId fluent, const Belief& belief);
   bool holdsAtoms(const Condition& condition, const Belief& belief);
   bool allWorlds(const Condition& tests, const Belief& belief);
@@ -131,6 +142,8 @@ class KnowledgeTask {
   std::vector<std::uint64_t> anyWorld_;
   std::vector<std::uint64_t> allWorlds_;
   Belief summarized_;
+  std::vector<bool> attachmentWritten_;      // per fluent: some effect applicator writes it
+  std::vector<std::uint64_t> symbolicHash_;  // per world: symbolicKey's term, 0 until computed
 };
 
 }  // namespace kaboum::symbolic

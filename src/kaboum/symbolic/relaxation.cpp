@@ -12,6 +12,21 @@ constexpr int kUnreachable = -1;
 
 RelaxedTask::RelaxedTask(const GroundTask& task)
     : task_(task), goalFact_(static_cast<int>(task.factCount)) {
+  std::vector<bool> deleted(task.atomNames.size(), false);
+  for (const Operator& op : task.operators) {
+    for (const AtomId atom : op.effect.deletes) deleted[static_cast<std::size_t>(atom)] = true;
+    for (const ConditionalEffect& conditional : op.conditional) {
+      for (const AtomId atom : conditional.effect.deletes) {
+        deleted[static_cast<std::size_t>(atom)] = true;
+      }
+    }
+  }
+  negationFact_.assign(task.atomNames.size(), -1);
+  for (std::size_t atom = 0; atom < deleted.size(); ++atom) {
+    if (deleted[atom]) continue;
+    negationFact_[atom] = goalFact_ + 1 + static_cast<int>(undeletable_.size());
+    undeletable_.push_back(static_cast<AtomId>(atom));
+  }
   preStart_.push_back(0);
   effectStart_.push_back(0);
   for (std::size_t o = 0; o < task.operators.size(); ++o) {
@@ -49,6 +64,9 @@ void RelaxedTask::stateFacts(StateView state, std::vector<int>& out) const {
   for (AtomId atom = 0; atom < atoms; ++atom) {
     if (state.atom(atom)) out.push_back(atom);
   }
+  for (const AtomId atom : undeletable_) {
+    if (!state.atom(atom)) out.push_back(negationFact_[static_cast<std::size_t>(atom)]);
+  }
   for (std::size_t f = 0; f < task_.valueFacts.size(); ++f) {
     if (task_.valueFacts[f].empty()) continue;
     const double value = state.fluent(static_cast<FluentId>(f));
@@ -60,6 +78,13 @@ void RelaxedTask::stateFacts(StateView state, std::vector<int>& out) const {
 
 std::vector<int> RelaxedTask::initialFacts() const {
   std::vector<int> out(task_.initialAtoms.begin(), task_.initialAtoms.end());
+  std::vector<bool> initial(task_.atomNames.size(), false);
+  for (const AtomId atom : task_.initialAtoms) initial[static_cast<std::size_t>(atom)] = true;
+  for (const AtomId atom : undeletable_) {
+    if (!initial[static_cast<std::size_t>(atom)]) {
+      out.push_back(negationFact_[static_cast<std::size_t>(atom)]);
+    }
+  }
   for (std::size_t f = 0; f < task_.valueFacts.size(); ++f) {
     const double value = task_.initialFluents[f];
     if (task_.valueFacts[f].empty() || std::isnan(value)) continue;
@@ -71,6 +96,10 @@ std::vector<int> RelaxedTask::initialFacts() const {
 
 void RelaxedTask::pushConditionFacts(const Condition& condition) {
   for (const AtomId atom : condition.positive) pre_.push_back(atom);
+  for (const AtomId atom : condition.negative) {
+    const int fact = negationFact_[static_cast<std::size_t>(atom)];
+    if (fact >= 0) pre_.push_back(fact);
+  }
   for (const FluentTest& test : condition.fluentTests) {
     if (!test.positive) continue;
     const int fact = task_.valueFact(test.fluent, test.value);

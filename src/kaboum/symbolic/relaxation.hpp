@@ -16,8 +16,11 @@ class RelaxedTask {
   explicit RelaxedTask(const GroundTask& task);
 
   const GroundTask& task() const { return task_; }
-  // Facts are the task's relaxation facts [0, factCount) plus the goal fact.
-  int factCount() const { return goalFact_ + 1; }
+  // Facts are the task's relaxation facts [0, factCount), the goal fact, then one fact ¬p per atom
+  // p no operator deletes: a negative literal over such an atom holds only where p is false (the
+  // others are treated optimistically, as satisfiable), so a static fact such as a sensed
+  // property that a goal disjunct negates is not taken for reachable.
+  int factCount() const { return goalFact_ + 1 + static_cast<int>(undeletable_.size()); }
   int goalFact() const { return goalFact_; }
   int unaryCount() const { return static_cast<int>(source_.size()); }
   // The ground operator a unary operator comes from, or -1 for a goal disjunct.
@@ -50,6 +53,8 @@ class RelaxedTask {
 
   const GroundTask& task_;
   int goalFact_;
+  std::vector<AtomId> undeletable_;  // atoms no operator deletes, in order of their ¬p facts
+  std::vector<int> negationFact_;    // per atom: its ¬p fact, or -1
   std::vector<int> pre_, preStart_, effects_, effectStart_, source_;
   std::vector<int> consumers_, consumerStart_, unconditional_, goalFacts_;
 };

@@ -101,7 +101,7 @@ bool StateEvaluator::holdsAny(const std::vector<Condition>& disjuncts, StateView
 }
 
 // Evaluates the assignments and module effects of `effect` on the old state into pendingWrites_.
-bool StateEvaluator::collect(const EffectList& effect, StateView state) {
+bool StateEvaluator::collect(const EffectList& effect, StateView state, bool effectApplicators) {
   for (const Assignment& assignment : effect.assignments) {
     double value = assignment.objectValued ? assignment.object : evaluate(assignment.value, state);
     const double current = state.fluent(assignment.target);
@@ -123,6 +123,7 @@ bool StateEvaluator::collect(const EffectList& effect, StateView state) {
     }
     pendingWrites_.push_back({assignment.target, value});
   }
+  if (!effectApplicators) return true;
   for (const int index : effect.moduleCalls) {
     const GroundModuleCall& call = task_.moduleCalls[index];
     reads_.clear();
@@ -136,7 +137,8 @@ bool StateEvaluator::collect(const EffectList& effect, StateView state) {
   return true;
 }
 
-bool StateEvaluator::apply(const Operator& op, StateView state, std::span<std::uint64_t> out) {
+bool StateEvaluator::apply(const Operator& op, StateView state, std::span<std::uint64_t> out,
+                           bool effectApplicators) {
   std::copy_n(state.words(), layout_.words(), out.begin());
   firing_.clear();
   pendingWrites_.clear();
@@ -145,7 +147,7 @@ bool StateEvaluator::apply(const Operator& op, StateView state, std::span<std::u
     if (holdsAny(conditional.disjuncts, state)) firing_.push_back(&conditional.effect);
   }
   for (const EffectList* effect : firing_) {
-    if (!collect(*effect, state)) return false;
+    if (!collect(*effect, state, effectApplicators)) return false;
   }
   for (const EffectList* effect : firing_) {
     for (const AtomId atom : effect->deletes) out[atom >> 6] &= ~(std::uint64_t{1} << (atom & 63));

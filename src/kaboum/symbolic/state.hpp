@@ -74,13 +74,15 @@ class StateEvaluator {
   bool holdsAny(const std::vector<Condition>& disjuncts, StateView state);
   bool isGoal(StateView state) { return holdsAny(task_.goal, state); }
   // Writes the successor of `state` under `op` (whose precondition holds) into `out`. Returns
-  // false if an effect applicator reports the effect infeasible.
-  bool apply(const Operator& op, StateView state, std::span<std::uint64_t> out);
+  // false if an effect applicator reports the effect infeasible. Without `effectApplicators`,
+  // none is called and the fluents they write keep their values (a preview of the successor).
+  bool apply(const Operator& op, StateView state, std::span<std::uint64_t> out,
+             bool effectApplicators = true);
 
   double evaluate(const NumericCode& code, StateView state);
 
  private:
-  bool collect(const EffectList& effect, StateView state);
+  bool collect(const EffectList& effect, StateView state, bool effectApplicators);
 
   const GroundTask& task_;
   AttachmentRuntime& attachments_;

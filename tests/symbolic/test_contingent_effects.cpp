@@ -1,0 +1,148 @@
+// The AND–OR search with effect applicators (the integrated planner's geometry, thesis §6.1.2):
+// effects are computed only for the actions the search reaches, actions whose effects have only
+// failed leave the heuristic's relaxation, and a symbolic transition already tried waits for the
+// untried ones, so that geometric variants of one symbolic state are not enumerated first.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <string>
+
+#include "kaboum/symbolic/contingent.hpp"
+#include "kaboum/symbolic/heuristic.hpp"
+
+namespace kaboum::symbolic {
+namespace {
+
+ContingentProblem parseTexts(const std::string& domain, const std::string& problem) {
+  return parseContingent(domain, "d.pddl", problem, "p.pddl");
+}
+
+// Effect applicators that count their calls per first argument; `fail` always fails, the others
+// write the read value plus one (a new opaque state each time, as a geometric effect does).
+ProcedureRegistry countingProcedures(std::map<std::string, int>& calls) {
+  ProcedureRegistry registry;
+  registry.addApplicator("step", [&calls](const AttachmentArgs& args, std::span<double> writes) {
+    ++calls[std::string(args.name(0))];
+    writes[0] = args.reads[0] + 1;
+    return true;
+  });
+  registry.addApplicator("fail", [&calls](const AttachmentArgs& args, std::span<double>) {
+    ++calls[std::string(args.name(0))];
+    return false;
+  });
+  return registry;
+}
+
+TEST(ContingentEffects, EffectsRunOnlyForTheActionsTheSearchReaches) {
+  const std::string domain = R"((define (domain chores)
+    (:requirements :strips :typing :numeric-fluents :semantic-attachments)
+    (:types chore)
+    (:predicates (done ?c - chore))
+    (:functions (state))
+    (:modules (work ?c - chore (state) effect step :reads ((state))))
+    (:action do :parameters (?c - chore) :effect (and (done ?c) [work ?c]))))";
+  const std::string problem = R"((define (problem p) (:domain chores)
+    (:objects c1 c2 c3 c4 c5 c6 c7 c8 - chore)
+    (:init (= (state) 0))
+    (:goal (done c5))))";
+  const ContingentProblem contingent = parseTexts(domain, problem);
+  std::map<std::string, int> calls;
+  KnowledgeTask task(contingent, countingProcedures(calls));
+  const ContingentResult result = solveContingent(task, {});
+  ASSERT_EQ(result.status, PlannerStatus::Solved);
+  // Eight actions are applicable at the start; the heuristic reaches the goal with one of them.
+  EXPECT_EQ(calls["c5"], 1);
+  EXPECT_EQ(calls.size(), 1u);
+}
+
+TEST(ContingentEffects, ActionsWhoseEffectsFailedLeaveTheHeuristic) {
+  // `shortcut` reaches the goal at once but its effect always fails; the long way is
+  // start, climb, finish. Once the shortcut has failed, the heuristic no longer counts on it, so
+  // the detours (`wander`), which look as good as `climb` while the shortcut is believed
+  // possible, are never tried.
+  const std::string domain = R"((define (domain detour)
+    (:requirements :strips :typing :numeric-fluents :semantic-attachments)
+    (:types place)
+    (:predicates (started) (high) (goal) (seen ?p - place))
+    (:functions (state))
+    (:modules (go ?p - place (state) effect step :reads ((state)))
+              (roam ?p - place (state) effect roam :reads ((state)))
+              (jump ?p - place (state) effect fail :reads ((state))))
+    (:action wander :parameters (?p - place) :precondition (started)
+      :effect (and (seen ?p) [roam ?p]))
+    (:action shortcut :parameters (?p - place) :effect (and (goal) [jump ?p]))
+    (:action start :parameters (?p - place) :effect (and (started) [go ?p]))
+    (:action climb :parameters (?p - place) :precondition (started)
+      :effect (and (high) [go ?p]))
+    (:action finish :parameters (?p - place) :precondition (high)
+      :effect (and (goal) [go ?p]))))";
+  const std::string problem = R"((define (problem p) (:domain detour)
+    (:objects home - place)
+    (:init (= (state) 0))
+    (:goal (goal))))";
+  const ContingentProblem contingent = parseTexts(domain, problem);
+  std::map<std::string, int> calls;
+  ProcedureRegistry procedures = countingProcedures(calls);
+  int roamed = 0;
+  procedures.addApplicator("roam", [&roamed](const AttachmentArgs& args, std::span<double> out) {
+    ++roamed;
+    out[0] = args.reads[0] + 1;
+    return true;
+  });
+  KnowledgeTask task(contingent, procedures);
+  const ContingentResult result = solveContingent(task, {});
+  ASSERT_EQ(result.status, PlannerStatus::Solved);
+  EXPECT_EQ(formatPlanTree(task, result.plan),
+            "(plan\n  (start home)\n  (climb home)\n  (finish home))\n");
+  EXPECT_EQ(roamed, 0);
+}
+
+TEST(ContingentEffects, ATransitionAlreadyTriedWaitsForUntriedOnes) {
+  // `fidget` changes only the opaque state, so it leads to a new knowledge state every time;
+  // depth-first search, which takes the newest successor first, would fidget for ever.
+  const std::string domain = R"((define (domain fidget)
+    (:requirements :strips :typing :numeric-fluents :semantic-attachments)
+    (:types hand)
+    (:predicates (ready) (goal))
+    (:functions (state))
+    (:modules (shake ?h - hand (state) effect step :reads ((state))))
+    (:action prepare :parameters (?h - hand) :effect (ready))
+    (:action finish :parameters (?h - hand) :precondition (ready) :effect (goal))
+    (:action fidget :parameters (?h - hand) :effect [shake ?h])))";
+  const std::string problem = R"((define (problem p) (:domain fidget)
+    (:objects left - hand)
+    (:init (= (state) 0))
+    (:goal (goal))))";
+  const ContingentProblem contingent = parseTexts(domain, problem);
+  std::map<std::string, int> calls;
+  KnowledgeTask task(contingent, countingProcedures(calls));
+  ContingentOptions options;
+  options.mode = "dfs";
+  options.limits.expansions = 1000;
+  const ContingentResult result = solveContingent(task, options);
+  ASSERT_EQ(result.status, PlannerStatus::Solved);
+  EXPECT_LE(calls["left"], 2);
+}
+
+TEST(ContingentEffects, TheRelaxationKnowsANegatedAtomNoActionDeletes) {
+  // (broken) is unknown and no action changes it: where it holds, the goal's second disjunct
+  // (not (broken)) can never hold, so the goal needs `repair`.
+  const std::string domain = R"((define (domain lamp)
+    (:predicates (broken) (fixed))
+    (:action repair :effect (fixed))))";
+  const std::string problem = R"((define (problem p) (:domain lamp)
+    (:init (unknown (broken)))
+    (:goal (or (fixed) (not (broken))))))";
+  const ContingentProblem contingent = parseTexts(domain, problem);
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  const AtomId broken = task.findAtom("(broken)");
+  ASSERT_GE(broken, 0);
+  ASSERT_EQ(task.initialBelief().size(), 2u);
+  const std::unique_ptr<Heuristic> ff = makeHeuristic("ff", task.task());
+  for (const std::uint32_t w : task.initialBelief()) {
+    EXPECT_EQ(ff->evaluate(task.world(w), nullptr), task.world(w).atom(broken) ? 1 : 0);
+  }
+}
+
+}  // namespace
+}  // namespace kaboum::symbolic
