@@ -22,6 +22,7 @@ struct Options {
   SceneLoadOptions load;
   tamp::SolveOptions solve;
   double motionTimeLimit = 2;
+  double memoryLimitMegabytes = 8000;
   std::string planOut;
   bool json = false;
   bool quiet = false;
@@ -70,7 +71,22 @@ int run(Options& options) {
   symbolic::ContingentProblem problem =
       symbolic::loadContingent(options.files.domain, options.files.problem);
   const world::World world = loadWorld(options.files.scene, options.load);
+  const tamp::Solver* progressOf = nullptr;  // set once the solver exists
+  if (!options.quiet) {
+    options.solve.search.progress = [&progressOf](const symbolic::ContingentStatistics& search) {
+      const tamp::GeometricStatistics& geometric = progressOf->attachments().statistics();
+      std::cerr << fmt::format(
+          "kaboum solve: {:.0f} s, {} expanded, {} geometric state(s), {} motion query(ies), {} "
+          "failed geometric call(s)\n",
+          search.seconds, search.expanded, progressOf->attachments().map().size(),
+          geometric.motionQueries, geometric.failures);
+    };
+    options.solve.search.progressPeriod = 5;
+  }
+  options.solve.search.limits.memoryBytes =
+      static_cast<std::size_t>(options.memoryLimitMegabytes * 1e6);
   tamp::Solver solver(world, std::move(problem), options.solve);
+  progressOf = &solver;
   const tamp::SolveResult result = solver.solve();
   const bool solved = result.status == PlannerStatus::Solved && result.verification.passed();
   const nlohmann::json plan = tamp::planFileJson(solver, result, options.files);
@@ -119,6 +135,11 @@ VerbRunner setup(CLI::App& command) {
                   "Maximum number of expanded knowledge states")
       ->check(CLI::PositiveNumber);
   command
+      .add_option("--memory-limit", options->memoryLimitMegabytes,
+                  "Memory limit of the search's knowledge states (MB)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command
       .add_option("--max-worlds", options->solve.maxWorlds,
                   "Maximum number of possible initial worlds")
       ->check(CLI::PositiveNumber)
@@ -149,7 +170,7 @@ VerbRunner setup(CLI::App& command) {
   addSceneLoadOptions(command, options->load);
   command.add_option("--plan-out", options->planOut, "Write the plan file (JSON) to FILE");
   command.add_flag("--json", options->json, "Print the plan file (JSON) on stdout");
-  command.add_flag("--quiet", options->quiet, "No summary on stderr");
+  command.add_flag("--quiet", options->quiet, "No progress or summary on stderr");
   return [options] { return run(*options); };
 }
 

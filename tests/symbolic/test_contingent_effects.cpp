@@ -4,6 +4,7 @@
 // untried ones, so that geometric variants of one symbolic state are not enumerated first.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <string>
 
@@ -17,17 +18,22 @@ ContingentProblem parseTexts(const std::string& domain, const std::string& probl
   return parseContingent(domain, "d.pddl", problem, "p.pddl");
 }
 
-// Effect applicators that count their calls per first argument; `fail` always fails, the others
-// write the read value plus one (a new opaque state each time, as a geometric effect does).
+std::string firstArgument(const AttachmentArgs& args) {
+  return args.objects.empty() ? std::string() : std::string(args.name(0));
+}
+
+// Effect applicators that count their calls per first argument ("" without one); `fail` always
+// fails, the others write the read value plus one (a new opaque state each time, as a geometric
+// effect does).
 ProcedureRegistry countingProcedures(std::map<std::string, int>& calls) {
   ProcedureRegistry registry;
   registry.addApplicator("step", [&calls](const AttachmentArgs& args, std::span<double> writes) {
-    ++calls[std::string(args.name(0))];
+    ++calls[firstArgument(args)];
     writes[0] = args.reads[0] + 1;
     return true;
   });
   registry.addApplicator("fail", [&calls](const AttachmentArgs& args, std::span<double>) {
-    ++calls[std::string(args.name(0))];
+    ++calls[firstArgument(args)];
     return false;
   });
   return registry;
@@ -122,6 +128,33 @@ TEST(ContingentEffects, ATransitionAlreadyTriedWaitsForUntriedOnes) {
   const ContingentResult result = solveContingent(task, options);
   ASSERT_EQ(result.status, PlannerStatus::Solved);
   EXPECT_LE(calls["left"], 2);
+}
+
+TEST(ContingentEffects, ProgressIsReportedWhileTheSearchRuns) {
+  const ContingentProblem contingent =
+      parseTexts(R"((define (domain count)
+    (:requirements :strips :typing :numeric-fluents :semantic-attachments)
+    (:predicates (goal))
+    (:functions (state))
+    (:modules (tick (state) effect step :reads ((state)))
+              (stop (state) effect fail :reads ((state))))
+    (:action tick :effect [tick])
+    (:action finish :effect (and (goal) [stop]))))",
+                 "(define (problem p) (:domain count) (:init (= (state) 0)) (:goal (goal)))");
+  std::map<std::string, int> calls;
+  KnowledgeTask task(contingent, countingProcedures(calls));
+  ContingentOptions options;
+  options.limits.expansions = 50;
+  std::vector<std::size_t> expanded;
+  options.progress = [&expanded](const ContingentStatistics& statistics) {
+    expanded.push_back(statistics.expanded);
+  };
+  options.progressPeriod = 0;
+  const ContingentResult result = solveContingent(task, options);
+  EXPECT_EQ(result.status, PlannerStatus::NodeLimit);
+  ASSERT_GE(expanded.size(), 50u);
+  EXPECT_TRUE(std::is_sorted(expanded.begin(), expanded.end()));
+  EXPECT_EQ(expanded.back(), 50u);  // the last report comes with the node limit
 }
 
 TEST(ContingentEffects, TheRelaxationKnowsANegatedAtomNoActionDeletes) {

@@ -401,6 +401,10 @@ TEST(SolveCli, BadInputGivesOneLineAndExitCodeTwoAndNoPlanExitCodeOne) {
   EXPECT_PRED_FORMAT2(::testing::IsSubstring, "no plan: time-limit", run.err);
   EXPECT_PRED_FORMAT2(::testing::IsSubstring, "putDown(kr5, block, air): no free placement",
                       run.err);
+  run = test::runCli(dir, "solve " + domain + " " + intoAir + " '" + air +
+                              "' --memory-limit 0.002" + test::sharedCacheOption());
+  EXPECT_EQ(run.exitCode, 1) << run.err;
+  EXPECT_PRED_FORMAT2(::testing::IsSubstring, "no plan: memory-limit", run.err);
 }
 
 }  // namespace kaboum::tamp

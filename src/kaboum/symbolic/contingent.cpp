@@ -53,7 +53,8 @@ class AndOrSearch {
                                      ? options.heuristic
                                      : std::string("blind"),
                                  task.task())),
-        deadline_(options.limits, kClockPeriod) {
+        deadline_(options.limits, clockPeriod(task)),
+        nextProgress_(options.progressPeriod) {
     if (heuristic_->excludes()) learned_ = makeHeuristic(options.heuristic, task.task());
     const std::size_t operators = task.task().operators.size();
     failures_.assign(operators, 0);
@@ -197,7 +198,23 @@ class AndOrSearch {
     return addNode(node);
   }
 
-  void checkLimits() const {
+  // Expansions between readings of the clock: every one when effect applicators (geometry) may
+  // make a single step take long.
+  static std::size_t clockPeriod(const KnowledgeTask& task) {
+    for (std::size_t op = 0; op < task.task().operators.size(); ++op) {
+      if (task.callsEffectApplicator(static_cast<int>(op))) return 1;
+    }
+    return kClockPeriod;
+  }
+
+  void checkLimits() {
+    if (options_.progress && deadline_.elapsedSeconds() >= nextProgress_) {
+      stats_.seconds = deadline_.elapsedSeconds();
+      stats_.beliefs = beliefs_.size();
+      stats_.worlds = task_.worldCount();
+      options_.progress(stats_);
+      nextProgress_ = stats_.seconds + options_.progressPeriod;
+    }
     const std::size_t bytes = task_.worldCount() * 8 * 4 + beliefs_.size() * 64;
     if (const auto limit = deadline_.reached(stats_.expanded, bytes)) throw LimitReached{*limit};
   }
@@ -402,6 +419,7 @@ class AndOrSearch {
   std::vector<int> learnedValue_;       // per world: learned_'s value, -1 until computed
   static constexpr int kUnlearned = 1 << 16;
   Deadline deadline_;
+  double nextProgress_;  // seconds
   std::unordered_map<Belief, int, BeliefHash> ids_;
   std::vector<const Belief*> beliefs_;
   std::vector<int> solved_;  // plan node of each solved knowledge state, -1 otherwise

@@ -3,6 +3,7 @@
 // validator that checks every branch and simulates execution against hidden true states.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -47,12 +48,18 @@ TreeMetrics measure(const PlanTree& plan);
 // without ids), ordering the search over non-sensing actions between branch points.
 const std::vector<std::string>& contingentSearchModes();
 
+struct ContingentStatistics;
+
 struct ContingentOptions {
   std::string mode = "gbfs";     // one of contingentSearchModes()
   std::string heuristic = "ff";  // one of heuristicNames(), evaluated per world (maximum);
                                  // ignored by bfs and dfs
   PlannerLimits limits;
   std::size_t maxDepth = 5000;  // nested branch points on one path
+  // Called every `progressPeriod` seconds of search with the statistics so far (seconds and
+  // beliefs set), for progress reports on long runs; none if empty.
+  std::function<void(const ContingentStatistics&)> progress;
+  double progressPeriod = 1.0;
 };
 
 struct ContingentStatistics {
