@@ -72,7 +72,8 @@ VerbRunner setupContingent(CLI::App& command) {
   command.add_option("problem", options->problem, "Contingent PDDL problem file")->required();
   command
       .add_option("--search", options->search.mode,
-                  "OR search between branch points: gbfs (greedy best-first), astar, bfs, dfs")
+                  "OR search between branch points: gbfs (greedy best-first), astar, bfs, dfs, ids "
+                  "(iterative deepening)")
       ->check(CLI::IsMember(symbolic::contingentSearchModes()))
       ->capture_default_str();
   command

@@ -115,7 +115,8 @@ VerbRunner setup(CLI::App& command) {
       ->required();
   command
       .add_option("--search", options->solve.search.mode,
-                  "Search between branch points: gbfs (greedy best-first), astar, bfs, dfs")
+                  "Search between branch points: gbfs (greedy best-first), astar, bfs, dfs, ids "
+                  "(iterative deepening)")
       ->check(CLI::IsMember(symbolic::contingentSearchModes()))
       ->capture_default_str();
   command

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <functional>
 #include <iomanip>
+#include <limits>
 #include <map>
 #include <queue>
 #include <set>
@@ -31,14 +32,14 @@ struct LimitReached {
   PlannerStatus status;
 };
 
-enum class OrMode { Greedy, AStar, BreadthFirst, DepthFirst };
+enum class OrMode { Greedy, AStar, BreadthFirst, DepthFirst, IterativeDeepening };
 
 OrMode orMode(const std::string& name) {
   const std::vector<std::string>& names = contingentSearchModes();
   const auto it = std::find(names.begin(), names.end(), name);
   if (it == names.end()) {
     throw InputError("unknown contingent search mode '" + name +
-                     "' (expected gbfs, astar, bfs or dfs)");
+                     "' (expected gbfs, astar, bfs, dfs or ids)");
   }
   return static_cast<OrMode>(it - names.begin());
 }
@@ -305,18 +306,7 @@ class AndOrSearch {
       int op;
       long steps;  // actions from `root`
     };
-    std::vector<SearchNode> nodes{{root, -1, -1, 0}};
-    std::unordered_set<int> seen{root};
-    // Times each symbolic transition (the parent's symbolicKey and the action) was generated.
-    std::unordered_map<std::uint64_t, int> transitions;
-    // Round, priority, node (ties: first in, first out). A transition generated before (from
-    // another geometric state of the same symbolic state) waits for the next round: a new
-    // geometric state is another sample of that transition, as the thesis's random-seed argument
-    // gives (§6.1.2), tried once the untried transitions are used up, so the search stays complete
-    // without enumerating geometric variants of one symbolic state.
-    using Entry = std::tuple<int, long, std::size_t>;
-    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
-    open.push({0, 0, 0});
+    std::vector<SearchNode> nodes;
     state_[root] = kOnPath;
     std::size_t found = 0;
     int ending = -1;
@@ -325,53 +315,76 @@ class AndOrSearch {
       found = index;
       ending = next;
     };
-    while (!open.empty() && ending < 0) {
-      const std::size_t index = std::get<2>(open.top());
-      open.pop();
-      checkLimits();
-      if (nodes[index].belief < 0) {
-        const auto parent = static_cast<std::size_t>(nodes[index].parent);
-        Candidate candidate;
-        if (!evaluate(nodes[index].op, nodes[parent].belief, candidate)) continue;
-        if (candidate.outcomes.size() > 1) {
+    // ids: depth-first searches to 1, 2, … actions from `root`, until one finds a plan or none is
+    // cut short by its bound; the other modes search once, unbounded.
+    const bool deepening = mode_ == OrMode::IterativeDeepening;
+    for (long bound = deepening ? 1 : std::numeric_limits<long>::max(); ending < 0; ++bound) {
+      bool cut = false;
+      nodes.assign(1, {root, -1, -1, 0});
+      std::unordered_set<int> seen{root};
+      // Times each symbolic transition (the parent's symbolicKey and the action) was generated.
+      std::unordered_map<std::uint64_t, int> transitions;
+      // Round, priority, node (ties: first in, first out). A transition generated before (from
+      // another geometric state of the same symbolic state) waits for the next round: a new
+      // geometric state is another sample of that transition, as the thesis's random-seed argument
+      // gives (§6.1.2), tried once the untried transitions are used up, so the search stays
+      // complete without enumerating geometric variants of one symbolic state.
+      using Entry = std::tuple<int, long, std::size_t>;
+      std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
+      open.push({0, 0, 0});
+      while (!open.empty() && ending < 0) {
+        const std::size_t index = std::get<2>(open.top());
+        open.pop();
+        checkLimits();
+        if (nodes[index].belief < 0) {
+          const auto parent = static_cast<std::size_t>(nodes[index].parent);
+          Candidate candidate;
+          if (!evaluate(nodes[index].op, nodes[parent].belief, candidate)) continue;
+          if (candidate.outcomes.size() > 1) {
+            const int rest = solveOutcome(candidate.outcomes, candidate.root, depth + 1);
+            if (rest >= 0) finish(parent, actionNode(candidate.op, rest));
+            continue;
+          }
+          const int child = candidate.outcomes[0].belief;
+          if (state_[child] != kOpen || !seen.insert(child).second) continue;
+          nodes[index].belief = child;
+        }
+        const int id = nodes[index].belief;
+        if (solved_[id] >= 0) {
+          ++stats_.reused;
+          finish(index, solved_[id]);
+          break;
+        }
+        if (task_.isGoal(*beliefs_[id])) {
+          finish(index, addNode({}));
+          break;
+        }
+        ++stats_.expanded;
+        const std::vector<Candidate> candidates = expand(id);
+        const std::uint64_t symbolic = task_.symbolicKey(*beliefs_[id]);
+        for (const Candidate& candidate : candidates) {
+          if (candidate.deferred || candidate.outcomes.size() == 1) {
+            const int child = candidate.deferred ? -1 : candidate.outcomes[0].belief;
+            if (child >= 0 && (state_[child] != kOpen || !seen.insert(child).second)) continue;
+            const long steps = nodes[index].steps + 1;
+            if (steps > bound) {
+              cut = true;
+              continue;
+            }
+            nodes.push_back({child, static_cast<int>(index), candidate.op, steps});
+            const std::uint64_t transition =
+                symbolic ^ (static_cast<std::uint64_t>(candidate.op) * 0x9e3779b97f4a7c15ull);
+            open.push({transitions[transition]++,
+                       priority(steps, candidate.score, nodes.size() - 1), nodes.size() - 1});
+            continue;
+          }
           const int rest = solveOutcome(candidate.outcomes, candidate.root, depth + 1);
-          if (rest >= 0) finish(parent, actionNode(candidate.op, rest));
-          continue;
+          if (rest < 0) continue;
+          finish(index, actionNode(candidate.op, rest));
+          break;
         }
-        const int child = candidate.outcomes[0].belief;
-        if (state_[child] != kOpen || !seen.insert(child).second) continue;
-        nodes[index].belief = child;
       }
-      const int id = nodes[index].belief;
-      if (solved_[id] >= 0) {
-        ++stats_.reused;
-        finish(index, solved_[id]);
-        break;
-      }
-      if (task_.isGoal(*beliefs_[id])) {
-        finish(index, addNode({}));
-        break;
-      }
-      ++stats_.expanded;
-      const std::vector<Candidate> candidates = expand(id);
-      const std::uint64_t symbolic = task_.symbolicKey(*beliefs_[id]);
-      for (const Candidate& candidate : candidates) {
-        if (candidate.deferred || candidate.outcomes.size() == 1) {
-          const int child = candidate.deferred ? -1 : candidate.outcomes[0].belief;
-          if (child >= 0 && (state_[child] != kOpen || !seen.insert(child).second)) continue;
-          const long steps = nodes[index].steps + 1;
-          nodes.push_back({child, static_cast<int>(index), candidate.op, steps});
-          const std::uint64_t transition =
-              symbolic ^ (static_cast<std::uint64_t>(candidate.op) * 0x9e3779b97f4a7c15ull);
-          open.push({transitions[transition]++, priority(steps, candidate.score, nodes.size() - 1),
-                     nodes.size() - 1});
-          continue;
-        }
-        const int rest = solveOutcome(candidate.outcomes, candidate.root, depth + 1);
-        if (rest < 0) continue;
-        finish(index, actionNode(candidate.op, rest));
-        break;
-      }
+      if (!cut) break;
     }
     if (ending < 0) {
       state_[root] = kFailed;
@@ -398,6 +411,7 @@ class AndOrSearch {
       case OrMode::BreadthFirst:
         return steps;
       case OrMode::DepthFirst:
+      case OrMode::IterativeDeepening:
         return -static_cast<long>(index);
     }
     return score;
@@ -463,7 +477,7 @@ std::string branchTest(const KnowledgeTask& task, const PlanTree::Node& node) {
 }
 
 const std::vector<std::string>& contingentSearchModes() {
-  static const std::vector<std::string> names{"gbfs", "astar", "bfs", "dfs"};
+  static const std::vector<std::string> names{"gbfs", "astar", "bfs", "dfs", "ids"};
   return names;
 }
 

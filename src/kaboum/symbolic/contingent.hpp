@@ -44,8 +44,8 @@ struct TreeMetrics {
 };
 TreeMetrics measure(const PlanTree& plan);
 
-// Names accepted by ContingentOptions::mode: "gbfs", "astar", "bfs", "dfs" (the core's modes
-// without ids), ordering the search over non-sensing actions between branch points.
+// Names accepted by ContingentOptions::mode: "gbfs", "astar", "bfs", "dfs", "ids" (the core's
+// modes), ordering the search over non-sensing actions between branch points.
 const std::vector<std::string>& contingentSearchModes();
 
 struct ContingentStatistics;

@@ -1,0 +1,16 @@
+; Three bottles of unknown content: o1 and o3 on robot1's side, o2 on robot2's.
+; Goal of Table 6.1 for each bottle: if it is empty, it is in the dishwasher and not grasped.
+(define (problem bartender-3)
+  (:domain bartender)
+  (:objects o1 o2 o3 - bottle robot1 robot2 - robot left shared right dishwasher - location)
+  (:init (ishandempty robot1) (ishandempty robot2)
+         (isatlocation o1 left) (unknown (isemptybottle o1))
+         (isatlocation o2 right) (unknown (isemptybottle o2))
+         (isatlocation o3 left) (unknown (isemptybottle o3))
+         (= (geometry) 0))
+  (:goal (and (or (and (isatlocation o1 dishwasher) (not (isgrasped o1)) (isemptybottle o1))
+                 (and (not (isemptybottle o1)) (or (not (isatlocation o1 dishwasher)) (isgrasped o1))))
+             (or (and (isatlocation o2 dishwasher) (not (isgrasped o2)) (isemptybottle o2))
+                 (and (not (isemptybottle o2)) (or (not (isatlocation o2 dishwasher)) (isgrasped o2))))
+             (or (and (isatlocation o3 dishwasher) (not (isgrasped o3)) (isemptybottle o3))
+                 (and (not (isemptybottle o3)) (or (not (isatlocation o3 dishwasher)) (isgrasped o3)))))))
