@@ -60,13 +60,29 @@ std::span<const RobotSweep::Piece> RobotSweep::sweep(std::span<const double> qa,
                                                      std::span<const double> qb,
                                                      std::span<const Attachment> held,
                                                      double epsilon) {
+  constexpr double kEverywhere = std::numeric_limits<double>::infinity();
+  return sweepNear(qa, qb, held, epsilon,
+                   {Vec3::Constant(-kEverywhere), Vec3::Constant(kEverywhere)});
+}
+
+std::span<const RobotSweep::Piece> RobotSweep::sweepNear(std::span<const double> qa,
+                                                         std::span<const double> qb,
+                                                         std::span<const Attachment> held,
+                                                         double epsilon, const Aabb& region) {
   const std::size_t finest = sample(qa, qb, held, epsilon);
   pieces_.clear();
   for (std::size_t i = 0; i < robot_.partCount(held); ++i) {
+    const Aabb& box = robot_.part(i, held).body->bounds().box;
     const std::size_t n = static_cast<std::size_t>(subdivisions_[i]);
     const std::size_t stride = finest / n;
     for (std::size_t k = 0; k < n; ++k) {
-      sweptPieces(i, held, samplePoses(k * stride), samplePoses((k + 1) * stride), piecesI_);
+      const std::span<const Pose> start = samplePoses(k * stride),
+                                  end = samplePoses((k + 1) * stride);
+      // The part's box at both ends contains its swept pieces' boxes over the sub-step.
+      const Aabb swept = transformedAabb(box, robot_.partPose(i, start, held))
+                             .merged(transformedAabb(box, robot_.partPose(i, end, held)));
+      if (!swept.overlaps(region)) continue;
+      sweptPieces(i, held, start, end, piecesI_);
       pieces_.insert(pieces_.end(), piecesI_.begin(), piecesI_.end());
     }
   }
@@ -233,9 +249,14 @@ bool sweptVolumesCollide(RobotSweep& a, std::span<const double> qa0, std::span<c
                          std::span<const Attachment> heldA, RobotSweep& b,
                          std::span<const double> qb0, std::span<const double> qb1,
                          std::span<const Attachment> heldB, double margin, double epsilon) {
-  const auto piecesA = a.sweep(qa0, qa1, heldA, epsilon);
+  const double reach = margin + 2 * epsilon;
   const auto piecesB = b.sweep(qb0, qb1, heldB, epsilon);
-  return anyPiecesWithinSorted(piecesA, piecesB, margin + 2 * epsilon, b.order_);
+  if (piecesB.empty()) return false;
+  // Only a's pieces near b's whole sweep can meet one of b's.
+  Aabb region = piecesB.front().box;
+  for (const RobotSweep::Piece& piece : piecesB) region = region.merged(piece.box);
+  const auto piecesA = a.sweepNear(qa0, qa1, heldA, epsilon, region.inflated(reach));
+  return anyPiecesWithinSorted(piecesA, piecesB, reach, b.order_);
 }
 
 }  // namespace kaboum::collision

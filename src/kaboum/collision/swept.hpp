@@ -62,6 +62,11 @@ class RobotSweep {
   // part of the robot holding `held` along the motion lies within `epsilon` of one of them.
   std::span<const Piece> sweep(std::span<const double> qa, std::span<const double> qb,
                                std::span<const Attachment> held, double epsilon);
+  // sweep()'s pieces of the sub-steps whose part's swept box meets `region`: the only ones that
+  // can come near it; the others are not built.
+  std::span<const Piece> sweepNear(std::span<const double> qa, std::span<const double> qb,
+                                   std::span<const Attachment> held, double epsilon,
+                                   const Aabb& region);
 
   // Definition 1 (2): the first object of `scene` in `sceneState` within margin + ε of the swept
   // volume of qa -> qb, holding `held`. Never misses an object the robot comes within `margin` of
