@@ -5,9 +5,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <limits>
+#include <thread>
 
 #include "kaboum/core/error.hpp"
+#include "kaboum/core/worker_pool.hpp"
 #include "kaboum/verify/reference_geometry.hpp"
 
 namespace kaboum::tamp {
@@ -283,12 +286,29 @@ void Solver::verifyPlan(SolveResult& result) {
   if (options_.verify) {
     verification.pathsChecked = true;
     const verify::ReferenceGeometry reference(*world_);
+    std::vector<std::pair<std::size_t, const ActionGeometry*>> actions;
     for (std::size_t node = 0; node < result.geometry.size(); ++node) {
-      for (const ActionGeometry& action : result.geometry[node]) {
-        verifyActionPaths(reference, node, action,
-                          statesAlong(*world_, attachments_->map().state(action.from), action),
-                          options_.verification, verification);
-      }
+      for (const ActionGeometry& action : result.geometry[node])
+        actions.emplace_back(node, &action);
+    }
+    // The actions' paths are independent: checked on every core, merged in plan order.
+    std::vector<PlanVerification> checked(actions.size());
+    WorkerPool workers(std::thread::hardware_concurrency());
+    workers.run(actions.size(), [&](std::size_t i) {
+      const ActionGeometry& action = *actions[i].second;
+      checked[i].smallestClearance = std::numeric_limits<double>::infinity();
+      verifyActionPaths(reference, actions[i].first, action,
+                        statesAlong(*world_, attachments_->map().state(action.from), action),
+                        options_.verification, checked[i]);
+    });
+    for (PlanVerification& part : checked) {
+      verification.paths += part.paths;
+      verification.samples += part.samples;
+      verification.collidingPaths += part.collidingPaths;
+      verification.smallestClearance =
+          std::min(verification.smallestClearance, part.smallestClearance);
+      if (verification.firstCollision.empty()) verification.firstCollision = part.firstCollision;
+      std::move(part.checks.begin(), part.checks.end(), std::back_inserter(verification.checks));
     }
   }
   verification.seconds = secondsSince(start);
