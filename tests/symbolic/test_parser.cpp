@@ -151,6 +151,88 @@ TEST(PddlParserErrors, UnsupportedAndInconsistent) {
   expectError("(define (domain s) (:predicates (p) (p)))", "d.pddl:1:37: duplicate predicate 'p'");
 }
 
+// --- lexical rules: Fast Downward's translator (lisp_parser.tokenize) --------------------------
+
+// The top-level expressions of `text` rendered back to PDDL, one space apart.
+std::string reread(const std::string& text) {
+  std::string out;
+  for (const SExpr& expr : readSExprs(text, "t.pddl"))
+    out += (out.empty() ? "" : " ") + toString(expr);
+  return out;
+}
+
+std::string lexError(const std::string& text) {
+  try {
+    readSExprs(text, "t.pddl");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(PddlLexer, AQuestionMarkStartsAVariableEvenGluedToAName) {
+  EXPECT_EQ(reread("(and (aircraft?a) (city ?c))"), "(and (aircraft ?a) (city ?c))");
+  EXPECT_EQ(reread("(p ?a?b)"), "(p ?a ?b)");
+  const SExpr atom = readSExprs("(aircraft?a)", "t.pddl")[0];
+  EXPECT_EQ(atom.items[1].pos.column, 10);  // the variable keeps its own position
+}
+
+TEST(PddlLexer, ParenthesesEndNames) {
+  EXPECT_EQ(reread("(and(at ?x)(clear ?y))"), "(and (at ?x) (clear ?y))");
+  EXPECT_EQ(reread("(p a)(q b)"), "(p a) (q b)");
+}
+
+TEST(PddlLexer, CommentsRunToTheEndOfTheLineAndMayHoldAnything) {
+  EXPECT_EQ(reread("(p ; caf\xC3\xA9 (unbalanced\n a)"), "(p a)");
+  EXPECT_EQ(reread("(p a;glued comment\n)"), "(p a)");
+  EXPECT_EQ(reread("(p ; old Mac line end\r a)"), "(p a)");
+  EXPECT_EQ(reread("(p a) ; no final line end"), "(p a)");
+}
+
+TEST(PddlLexer, LinesEndAtNewlineCarriageReturnOrBoth) {
+  const SExpr list = readSExprs("(p\ra\r\nb\nc)", "t.pddl")[0];
+  EXPECT_EQ(list.items[1].pos.line, 2);
+  EXPECT_EQ(list.items[2].pos.line, 3);
+  EXPECT_EQ(list.items[3].pos.line, 4);
+  EXPECT_EQ(list.items[3].pos.column, 1);
+}
+
+TEST(PddlLexer, NamesAreCaseInsensitiveButKeepTheirSpelling) {
+  EXPECT_EQ(reread("(DEFINE (Domain BW))"), "(define (domain bw))");
+  EXPECT_EQ(readSExprs("(Pick-Up)", "t.pddl")[0].items[0].original, "Pick-Up");
+}
+
+TEST(PddlLexer, NamesHoldHyphensDigitsAndPunctuation) {
+  EXPECT_EQ(reread("(on-table ?x-1 - block_2 :effect x.y 2.5 -3 1e3)"),
+            "(on-table ?x-1 - block_2 :effect x.y 2.5 -3 1e3)");
+  EXPECT_EQ(readSExprs("(?x - t)", "t.pddl")[0].items.size(), 3u);  // a lone '-' is a token
+}
+
+TEST(PddlLexer, WhitespaceIsAnyAsciiSpaceIncludingSeparators) {
+  EXPECT_EQ(reread("(p\ta\fb\vc\x1c"
+                   "d\x1f"
+                   "e)"),
+            "(p a b c d e)");
+  EXPECT_EQ(reread("\xEF\xBB\xBF(p a)"), "(p a)");  // a UTF-8 byte order mark is skipped
+}
+
+TEST(PddlLexer, NonAsciiOrControlCharactersOutsideCommentsAreErrors) {
+  EXPECT_EQ(lexError("(p caf\xC3\xA9)"), "t.pddl:1:7: non-ASCII character outside a comment");
+  EXPECT_EQ(lexError("(p\n a\x01)"), "t.pddl:2:3: unexpected control character in name");
+}
+
+TEST(PddlParser, ReadsZenotravelWhoseDomainGluesAVariableToAName) {
+  const Domain domain = loadDomain(pddlPath("zenotravel/domain.pddl"));
+  const Action& refuel = domain.actions[domain.findAction("refuel")];
+  const Formula& aircraft = refuel.precondition.children[0];
+  EXPECT_EQ(domain.predicates[aircraft.symbol].name, "aircraft");
+  ASSERT_EQ(aircraft.args.size(), 1u);
+  EXPECT_EQ(aircraft.args[0].kind, Term::Kind::Variable);
+  const Problem problem = loadProblem(pddlPath("zenotravel/p01.pddl"), domain);
+  const PlanReport report = testing::planAndValidate(domain, problem, SearchOptions{});
+  EXPECT_EQ(report.search.status, PlannerStatus::Solved);
+}
+
 TEST(PddlParserErrors, DeepNestingIsRejectedNotACrash) {
   const std::string deep(100000, '(');
   EXPECT_THROW(parseDomain(deep, "deep.pddl"), InputError);
