@@ -69,6 +69,8 @@ int run(Options& options) {
   // The PDDL first: its mistakes show before the scene's preprocessing.
   symbolic::ContingentProblem problem =
       symbolic::loadContingent(options.files.domain, options.files.problem);
+  printWarnings(problem.domain.warnings);
+  printWarnings(problem.problem.warnings);
   const world::World world = loadWorld(options.files.scene, options.load);
   tamp::Solver solver(world, std::move(problem), options.solve);
   const tamp::SolveResult result = solver.solve();
