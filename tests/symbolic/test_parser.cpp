@@ -156,7 +156,9 @@ TEST(PddlParserErrors, UnsupportedEffectsAndInitialStatementsAreNamed) {
   expectError(
       "(define (problem p) (:domain s) (:objects a - block)\n"
       "  (:init (invariant (clear a) (on a a))) (:goal (and)))",
-      "p.pddl:2:11: unsupported: PO-PRP's '(invariant …)' in :init", kSmallDomain);
+      "p.pddl:2:11: PO-PRP's '(invariant …)' (uncertain initial knowledge) needs the "
+      "knowledge-level planner: kaboum contingent",
+      kSmallDomain);
 }
 
 // --- inconsistencies other planners read (Contingent-FF, CLG, Fast Downward) ----------------
@@ -187,12 +189,12 @@ TEST(PddlParser, UndeclaredTypesAreReadAsSubtypesOfObjectWithAWarning) {
   EXPECT_EQ(domain.constantTypes, std::vector<int>{thing});
   EXPECT_TRUE(domain.functions[0].isNumeric());  // '- number' is no type
   const Problem problem = parseProblem(
-      "(define (problem p) (:domain s) (:objects b - ball) (:goal (p c)))", "p.pddl", domain);
+      "(define (problem p) (:domain s) (:objects b e - ball) (:goal (p c)))", "p.pddl", domain);
   EXPECT_EQ(
       problem.warnings,
       std::vector<std::string>{
-          "p.pddl:1:47: type 'ball' is not declared by d.pddl; its objects are of type object"});
-  EXPECT_EQ(problem.objectTypes, (std::vector<int>{thing, 0}));
+          "p.pddl:1:49: type 'ball' is not declared by d.pddl; its objects are of type object"});
+  EXPECT_EQ(problem.objectTypes, (std::vector<int>{thing, 0, 0}));
 }
 
 TEST(PddlParser, DomainSectionsMayComeInAnyOrder) {

@@ -228,6 +228,32 @@ TEST(PublishedInputs, PoPrpDoorsProblemNamesAnotherDomain) {
       << cli.output;
 }
 
+// PO-PRP's own doors files: a `(:sensor …)` is a sensing action, `(invariant …)` in :init a
+// `oneof` (the CLG version beside it, n05-clg.pddl, writes the same instance so).
+TEST(PublishedInputs, PoPrpSensorsAreSensingActionsAndInvariantsOneOfs) {
+  const std::string domain = contingentPath("doors-po-prp/domain.pddl");
+  const std::string problem = contingentPath("doors-po-prp/n05.pddl");
+  const ContingentProblem contingent = loadContingent(domain, problem);
+  EXPECT_EQ(contingent.problem.warnings.size(), 1u);  // it names domain colored-balls too
+  ASSERT_EQ(contingent.constraints.size(), 2u);
+  for (const KnowledgeConstraint& constraint : contingent.constraints) {
+    EXPECT_EQ(constraint.kind, KnowledgeConstraint::Kind::OneOf);
+    EXPECT_EQ(constraint.literals.size(), 5u);
+  }
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  EXPECT_EQ(task.initialBelief().size(), 25u);
+  EXPECT_GE(task.findOperator("(door-obs p1 p2 p3)"), 0);
+  const ContingentResult result = solveAndValidate(task);
+  ASSERT_EQ(result.status, PlannerStatus::Solved);
+  EXPECT_EQ(measure(result.plan).leaves, 25.0);
+  const auto hidden = parseHidden(readTextFile(problem), problem, contingent);
+  ASSERT_EQ(hidden.size(), 5u);
+  for (const HiddenState& state : hidden) {
+    const Execution run = executePlanTree(task, result.plan, task.hiddenWorld(state, problem));
+    EXPECT_TRUE(run.reachedGoal) << "line " << state.pos.line << ": " << run.message;
+  }
+}
+
 TEST(PublishedInputs, ContingentValidateSeedsNaturesChoices) {
   const std::string domain = writeTempFile("coin-domain.pddl", kCoinDomain);
   const std::string problem =

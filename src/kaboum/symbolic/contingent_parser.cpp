@@ -354,6 +354,18 @@ InitialLiteral resolveLiteral(const SExpr& expr, const std::string& file, const 
   return {resolveAtom(expr, file, domain, problem), true, expr.pos};
 }
 
+// PO-PRP's sensor `(:sensor NAME :parameters (…) :condition φ :sense (p …))` as the sensing action
+// `(:action NAME :parameters (…) :precondition φ :observe (p …))`: an observation the planner may
+// make whenever φ holds (PO-PRP makes it then anyway; what it tells is the same).
+void sensorAsAction(SExpr& sensor) {
+  sensor.items[0].text = ":action";
+  for (std::size_t i = 2; i < sensor.items.size(); i += 2) {
+    SExpr& key = sensor.items[i];
+    if (key.isAtom(":condition")) key.text = ":precondition";
+    if (key.isAtom(":sense")) key.text = ":observe";
+  }
+}
+
 // Moves the knowledge constraints of :init out of it, leaving the plain facts in place.
 std::vector<SExpr> extractConstraints(SExpr& init) {
   std::vector<SExpr> facts;
@@ -362,7 +374,7 @@ std::vector<SExpr> extractConstraints(SExpr& init) {
     if (item.startsWith("and")) {
       for (std::size_t i = 1; i < item.items.size(); ++i) visit(item.items[i]);
     } else if (item.startsWith("unknown") || item.startsWith("oneof") || item.startsWith("or") ||
-               item.startsWith("not")) {
+               item.startsWith("not") || item.startsWith("invariant")) {
       constraints.push_back(std::move(item));
     } else {
       facts.push_back(std::move(item));
@@ -400,6 +412,7 @@ ContingentProblem parseContingent(std::string_view domainText, const std::string
     SExpr& define = domainTop[0];
     for (std::size_t i = 2; i < define.items.size(); ++i) {
       SExpr& part = define.items[i];
+      if (part.startsWith(":sensor")) sensorAsAction(part);
       if (part.startsWith(":action")) rewriteAction(part, rewriter, domainFile);
       if (part.startsWith(":requirements")) {
         std::erase_if(part.items, [](const SExpr& r) { return r.isAtom(":contingent"); });
@@ -439,7 +452,7 @@ ContingentProblem parseContingent(std::string_view domainText, const std::string
           {resolveAtom(expr.items[1], problemFile, out.domain, out.problem), true, expr.pos});
     } else {
       constraint.kind =
-          head == "oneof" ? KnowledgeConstraint::Kind::OneOf : KnowledgeConstraint::Kind::Or;
+          head == "or" ? KnowledgeConstraint::Kind::Or : KnowledgeConstraint::Kind::OneOf;
       if (expr.items.size() < 2) fail(problemFile, expr, "'" + head + "' needs at least one atom");
       for (std::size_t i = 1; i < expr.items.size(); ++i) {
         const SExpr& item = expr.items[i];

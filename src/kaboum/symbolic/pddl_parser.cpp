@@ -811,14 +811,17 @@ class ProblemParser : public Parser {
   }
 
   // The type of problem objects; one the domain never names is read as object, with a warning
-  // (no action or predicate can tell them apart).
+  // (no action or predicate can tell them apart), once per place it is written.
   int objectType(const SExpr* type) {
     if (type != nullptr && type->isAtom() && !type->text.empty() &&
         domain_.findType(type->text) < 0) {
-      problem_.warnings.push_back(locate(file_,
-                                         "type '" + type->text + "' is not declared by " +
-                                             domain_.file + "; its objects are of type object",
-                                         type->pos.line, type->pos.column));
+      std::string warning = locate(file_,
+                                   "type '" + type->text + "' is not declared by " + domain_.file +
+                                       "; its objects are of type object",
+                                   type->pos.line, type->pos.column);
+      if (problem_.warnings.empty() || problem_.warnings.back() != warning) {
+        problem_.warnings.push_back(std::move(warning));
+      }
       return 0;
     }
     return typeId(domain_, type);
@@ -842,7 +845,9 @@ class ProblemParser : public Parser {
       const std::string& head = expectName(fact.items[0], "a predicate name");
       if (head == "not") continue;  // closed world: negative facts are implicit
       if (head == "invariant" && domain_.findPredicate(head) < 0) {
-        fail(fact.items[0], "unsupported: PO-PRP's '(invariant …)' in :init");
+        fail(fact.items[0],
+             "PO-PRP's '(invariant …)' (uncertain initial knowledge) needs the knowledge-level "
+             "planner: kaboum contingent");
       }
       if (head == "=") {
         if (fact.items.size() != 3) fail(fact, "expected '(= (f args) value)'");
