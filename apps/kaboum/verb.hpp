@@ -25,6 +25,10 @@ std::vector<VerbInfo>& verbRegistry();
 // InputError give one line on stderr, "PROGRAM: error: ...", and exit code 2.
 int runVerbs(int argc, char** argv, const std::string& program, const std::string& description);
 
+// Prints what an input file was read despite, one "kaboum: warning: file:line:col: ..." line each
+// on stderr.
+void printWarnings(const std::vector<std::string>& warnings);
+
 struct VerbRegistration {
   VerbRegistration(std::string name, std::string description, VerbSetup setup) {
     verbRegistry().push_back({std::move(name), std::move(description), setup});

@@ -33,6 +33,8 @@ struct ContingentCliOptions {
 int runContingent(const ContingentCliOptions& options) {
   const symbolic::ContingentProblem contingent =
       symbolic::loadContingent(options.domain, options.problem);
+  printWarnings(contingent.domain.warnings);
+  printWarnings(contingent.problem.warnings);
   const symbolic::ProcedureRegistry procedures =
       options.toyGeometry ? scenarios::toyGeometryProcedures() : symbolic::ProcedureRegistry{};
   symbolic::KnowledgeTask task(contingent, procedures, options.maxWorlds);

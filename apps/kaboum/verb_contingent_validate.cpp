@@ -22,6 +22,7 @@ struct ValidateOptions {
   std::string problem;
   std::string plan;
   std::string hidden;
+  std::uint64_t seed = 0;
   bool json = false;
   bool toyGeometry = false;
 };
@@ -29,6 +30,8 @@ struct ValidateOptions {
 int runValidate(const ValidateOptions& options) {
   const symbolic::ContingentProblem contingent =
       symbolic::loadContingent(options.domain, options.problem);
+  printWarnings(contingent.domain.warnings);
+  printWarnings(contingent.problem.warnings);
   const symbolic::ProcedureRegistry procedures =
       options.toyGeometry ? scenarios::toyGeometryProcedures() : symbolic::ProcedureRegistry{};
   symbolic::KnowledgeTask task(contingent, procedures);
@@ -42,6 +45,7 @@ int runValidate(const ValidateOptions& options) {
         symbolic::parseHidden(symbolic::readTextFile(options.hidden), options.hidden, contingent);
     for (const symbolic::HiddenState& state : hidden) {
       const std::uint32_t world = task.hiddenWorld(state, options.hidden);
+      task.seedOutcomes(options.seed);
       const symbolic::Execution run = symbolic::executePlanTree(task, plan, world);
       allExecuted = allExecuted && run.reachedGoal;
       nlohmann::json execution = io::toJson(run);
@@ -81,6 +85,10 @@ VerbRunner setupValidate(CLI::App& command) {
   command.add_option("plan", options->plan, "Plan tree written by `kaboum contingent`")->required();
   command.add_option("--hidden", options->hidden,
                      "File of (:hidden atoms…) true initial states to execute the plan in");
+  command
+      .add_option("--seed", options->seed,
+                  "Seed of nature's choices of non-deterministic effects in those executions")
+      ->capture_default_str();
   command.add_flag("--toy-geometry", options->toyGeometry,
                    "Register the toy `reaches` attachment of the scenarios");
   command.add_flag("--json", options->json, "Print the result as JSON");

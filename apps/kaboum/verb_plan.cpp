@@ -35,6 +35,7 @@ int runPlan(const PlanOptions& options) {
   }
   const symbolic::PlanReport report =
       symbolic::planFiles(options.domain, options.problem, symbolic::ProcedureRegistry{}, search);
+  printWarnings(report.warnings);
   const bool solved = report.search.status == PlannerStatus::Solved;
   if (solved && !options.planOut.empty()) {
     std::ofstream out(options.planOut);

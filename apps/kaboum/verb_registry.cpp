@@ -60,4 +60,8 @@ int runVerbs(int argc, char** argv, const std::string& program, const std::strin
   return 2;
 }
 
+void printWarnings(const std::vector<std::string>& warnings) {
+  for (const std::string& warning : warnings) std::cerr << "kaboum: warning: " << warning << "\n";
+}
+
 }  // namespace kaboum::cli

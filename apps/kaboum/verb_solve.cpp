@@ -70,6 +70,8 @@ int run(Options& options) {
   // The PDDL first: its mistakes show before the scene's preprocessing.
   symbolic::ContingentProblem problem =
       symbolic::loadContingent(options.files.domain, options.files.problem);
+  printWarnings(problem.domain.warnings);
+  printWarnings(problem.problem.warnings);
   const world::World world = loadWorld(options.files.scene, options.load);
   const tamp::Solver* progressOf = nullptr;  // set once the solver exists
   if (!options.quiet) {

@@ -23,6 +23,8 @@ struct ValidateOptions {
 int runValidate(const ValidateOptions& options) {
   const symbolic::Domain domain = symbolic::loadDomain(options.domain);
   const symbolic::Problem problem = symbolic::loadProblem(options.problem, domain);
+  printWarnings(domain.warnings);
+  printWarnings(problem.warnings);
   const std::vector<symbolic::PlanStep> plan =
       symbolic::parsePlan(symbolic::readTextFile(options.plan), options.plan, domain, problem);
   symbolic::AttachmentRuntime attachments(domain, problem, symbolic::ProcedureRegistry{});

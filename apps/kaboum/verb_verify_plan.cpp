@@ -109,6 +109,8 @@ int run(const Options& options) {
   // The files that are quick to read first: their mistakes show before the scene's preprocessing.
   const symbolic::ContingentProblem problem =
       symbolic::loadContingent(options.domain, options.problem);
+  printWarnings(problem.domain.warnings);
+  printWarnings(problem.problem.warnings);
   const nlohmann::json plan = io::readJsonFile(options.plan);
   const world::World world = loadWorld(options.scene, options.load);
   if (!options.quiet) {

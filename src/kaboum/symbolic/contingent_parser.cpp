@@ -1,6 +1,7 @@
 #include "kaboum/symbolic/contingent_parser.hpp"
 
 #include <algorithm>
+#include <array>
 #include <functional>
 #include <map>
 #include <set>
@@ -32,7 +33,7 @@ class Rewriter {
   enum class Context { Effect, Precondition, Goal };
   void queries(SExpr& expr, Context context, bool positive = true) {
     if (!expr.isList() || expr.items.empty()) return;
-    if (context == Context::Effect && databaseUpdate(expr)) {
+    if (context == Context::Effect && (databaseUpdate(expr) || nondeterministicEffect(expr))) {
       queries(expr, context, positive);
       return;
     }
@@ -76,7 +77,8 @@ class Rewriter {
   std::map<std::string, SourcePos> kwPredicates;
   std::map<std::string, SourcePos> kvFunctions;
   // Auxiliary predicates over a base predicate: {prefix, base name} -> first use. Prefixes:
-  // "k." / "k-not." (queries K(p) / K(¬p) under a negation), "kf-del." / "kf-del-not." (forget).
+  // "k." / "k-not." (queries K(p) / K(¬p) under a negation), "kf-del." / "kf-del-not." (forget),
+  // "nondet-del." / "nondet-add." (a non-deterministic effect may delete / add p).
   std::map<std::pair<std::string, std::string>, SourcePos> kfPredicates;
 
  private:
@@ -136,12 +138,52 @@ class Rewriter {
     return true;
   }
 
+  // Contingent-FF's non-deterministic effect `(nondet l)`: l may or may not take place, so in
+  // each world where it applies the atom keeps its value or takes l's, and knowing it is lost
+  // (the thesis's loss of knowledge): (nondet (not (p x))) -> (nondet-del.p x) (like del(Kf, p),
+  // and the true world may lose p), (nondet (p x)) -> (nondet-add.p x). False if not one.
+  bool nondeterministicEffect(SExpr& expr) {
+    if (!expr.startsWith("nondet")) return false;
+    const auto isLiteral = [](const SExpr& atom) {
+      return atom.kind == SExpr::Kind::List && !atom.items.empty() && atom.items[0].isAtom() &&
+             std::none_of(kConnectives.begin(), kConnectives.end(),
+                          [&](std::string_view c) { return atom.startsWith(c); });
+    };
+    SExpr* literal = expr.items.size() == 2 ? &expr.items[1] : nullptr;
+    const bool negated =
+        literal != nullptr && literal->startsWith("not") && literal->items.size() == 2;
+    SExpr* atom = negated ? &literal->items[1] : literal;
+    if (atom == nullptr || !isLiteral(*atom)) {
+      fail(file_, expr, "'nondet' takes one literal, e.g. (nondet (not (p ?x)))");
+    }
+    SExpr changed = std::move(*atom);
+    auxiliary(changed, negated ? "nondet-del." : "nondet-add.");
+    expr = std::move(changed);
+    return true;
+  }
+
+  static constexpr std::array<std::string_view, 9> kConnectives = {
+      "and", "or", "not", "imply", "when", "forall", "exists", "oneof", "nondet"};
+
   const std::string& file_;
 };
 
+// The atom a non-deterministic effect marker `(nondet-del.p …)` / `(nondet-add.p …)` may change,
+// as its predicate name; other atoms name themselves.
+std::string_view changedPredicate(const SExpr& atom) {
+  std::string_view name = atom.items[0].text;
+  for (const std::string_view prefix : {"nondet-del.", "nondet-add."}) {
+    if (name.starts_with(prefix)) name.remove_prefix(prefix.size());
+  }
+  return name;
+}
+
 bool sameAtom(const SExpr& a, const SExpr& b) {
-  if (a.items.size() != b.items.size()) return false;
-  for (std::size_t i = 0; i < a.items.size(); ++i) {
+  if (a.items.size() != b.items.size() || !a.items[0].isAtom() || !b.items[0].isAtom() ||
+      changedPredicate(a) != changedPredicate(b)) {
+    return false;
+  }
+  for (std::size_t i = 1; i < a.items.size(); ++i) {
     if (!a.items[i].isAtom() || !b.items[i].isAtom() || a.items[i].text != b.items[i].text) {
       return false;
     }
@@ -149,7 +191,7 @@ bool sameAtom(const SExpr& a, const SExpr& b) {
   return true;
 }
 
-// Finds an add or delete of `observed` in an effect tree.
+// Finds an add, delete or non-deterministic change of `observed` in a rewritten effect tree.
 const SExpr* findChange(const SExpr& effect, const SExpr& observed) {
   if (!effect.isList() || effect.items.empty()) return nullptr;
   if (sameAtom(effect, observed)) return &effect;
@@ -312,6 +354,18 @@ InitialLiteral resolveLiteral(const SExpr& expr, const std::string& file, const 
   return {resolveAtom(expr, file, domain, problem), true, expr.pos};
 }
 
+// PO-PRP's sensor `(:sensor NAME :parameters (…) :condition φ :sense (p …))` as the sensing action
+// `(:action NAME :parameters (…) :precondition φ :observe (p …))`: an observation the planner may
+// make whenever φ holds (PO-PRP makes it then anyway; what it tells is the same).
+void sensorAsAction(SExpr& sensor) {
+  sensor.items[0].text = ":action";
+  for (std::size_t i = 2; i < sensor.items.size(); i += 2) {
+    SExpr& key = sensor.items[i];
+    if (key.isAtom(":condition")) key.text = ":precondition";
+    if (key.isAtom(":sense")) key.text = ":observe";
+  }
+}
+
 // Moves the knowledge constraints of :init out of it, leaving the plain facts in place.
 std::vector<SExpr> extractConstraints(SExpr& init) {
   std::vector<SExpr> facts;
@@ -320,7 +374,7 @@ std::vector<SExpr> extractConstraints(SExpr& init) {
     if (item.startsWith("and")) {
       for (std::size_t i = 1; i < item.items.size(); ++i) visit(item.items[i]);
     } else if (item.startsWith("unknown") || item.startsWith("oneof") || item.startsWith("or") ||
-               item.startsWith("not")) {
+               item.startsWith("not") || item.startsWith("invariant")) {
       constraints.push_back(std::move(item));
     } else {
       facts.push_back(std::move(item));
@@ -358,16 +412,13 @@ ContingentProblem parseContingent(std::string_view domainText, const std::string
     SExpr& define = domainTop[0];
     for (std::size_t i = 2; i < define.items.size(); ++i) {
       SExpr& part = define.items[i];
+      if (part.startsWith(":sensor")) sensorAsAction(part);
       if (part.startsWith(":action")) rewriteAction(part, rewriter, domainFile);
       if (part.startsWith(":requirements")) {
         std::erase_if(part.items, [](const SExpr& r) { return r.isAtom(":contingent"); });
       }
     }
     declareKnowledgePredicates(define, rewriter, domainFile, goalRewriter, problemFile);
-    // Some benchmark domains declare constants before their types: declare types first.
-    std::stable_partition(define.items.begin() + 2, define.items.end(), [](const SExpr& part) {
-      return part.startsWith(":requirements") || part.startsWith(":types");
-    });
   }
   out.domain = parseDomain(domainTop, domainFile);
   for (const auto& [name, pos] : goalRewriter.kwPredicates) {
@@ -401,7 +452,7 @@ ContingentProblem parseContingent(std::string_view domainText, const std::string
           {resolveAtom(expr.items[1], problemFile, out.domain, out.problem), true, expr.pos});
     } else {
       constraint.kind =
-          head == "oneof" ? KnowledgeConstraint::Kind::OneOf : KnowledgeConstraint::Kind::Or;
+          head == "or" ? KnowledgeConstraint::Kind::Or : KnowledgeConstraint::Kind::OneOf;
       if (expr.items.size() < 2) fail(problemFile, expr, "'" + head + "' needs at least one atom");
       for (std::size_t i = 1; i < expr.items.size(); ++i) {
         const SExpr& item = expr.items[i];

@@ -1,6 +1,7 @@
 // Compiler of the contingent PDDL dialect (thesis §3.3.1, PKS databases Kf/Kw/Kv and primitive
-// queries; seed 003 §III-A): the dialect (`unknown`, `oneof`, `or` in :init, `:observe`) and
-// explicit PKS operators (`(kw φ)`, `(kv f)`, `(k φ)`, ¬K as `(not (k φ))`, database updates
+// queries; seed 003 §III-A): the dialect (`unknown`, `oneof`, `or` in :init, `:observe`,
+// Contingent-FF's `(nondet l)` effects, PO-PRP's `(:sensor …)` and `(invariant …)`) and explicit
+// PKS operators (`(kw φ)`, `(kv f)`, `(k φ)`, ¬K as `(not (k φ))`, database updates
 // `(add|del kf|kw|kv φ)`, del(Kf) forgetting) are rewritten onto the core parser and grounder; the
 // knowledge constraints of :init are kept for the knowledge level (knowledge.hpp).
 #pragma once
@@ -20,8 +21,9 @@ struct InitialLiteral {
   SourcePos pos;
 };
 
-// One statement of :init beyond plain known atoms: `(unknown p)`, `(oneof l…)` (exactly one holds),
-// `(or l…)` (at least one holds) or `(not p)` (p known false).
+// One statement of :init beyond plain known atoms: `(unknown p)`, `(oneof l…)` (exactly one holds;
+// also PO-PRP's `(invariant l…)`, which the CLG versions of its problems write as `oneof`), `(or
+// l…)` (at least one holds) or `(not p)` (p known false).
 struct KnowledgeConstraint {
   enum class Kind { Unknown, OneOf, Or, KnownFalse };
   Kind kind = Kind::Unknown;

@@ -61,7 +61,9 @@ KnowledgeTask::KnowledgeTask(const ContingentProblem& contingent,
     for (const auto& [prefix, negated] : {std::pair{"(k.", false},
                                           {"(k-not.", true},
                                           {"(kf-del.", false},
-                                          {"(kf-del-not.", true}}) {
+                                          {"(kf-del-not.", true},
+                                          {"(nondet-del.", false},
+                                          {"(nondet-add.", true}}) {
       const std::string_view head(prefix);
       if (!name.starts_with(head)) continue;
       const auto it = atomIds_.find("(" + name.substr(head.size()));
@@ -69,6 +71,7 @@ KnowledgeTask::KnowledgeTask(const ContingentProblem& contingent,
       Auxiliary& target = query ? kQuery_[a] : forget_[a];
       target.base = it == atomIds_.end() ? kNoBase : it->second;
       target.negated = negated;
+      target.nondeterministic = head.starts_with("(nondet-");
       if (!query) forgetAtoms_.push_back(static_cast<AtomId>(a));
       break;
     }
@@ -481,7 +484,9 @@ AtomId KnowledgeTask::pendingObservation(const Belief& belief) {
 
 // del(Kf, p) (thesis §3.3.1): the successor world in `scratch_` is stored without its (kf-del.…)
 // markers, and for each marker every world stored for it so far where p is true (false for
-// kf-del-not) gains a twin where p is false (true), so K(p) (K(¬p)) no longer holds.
+// kf-del-not) gains a twin where p is false (true), so K(p) (K(¬p)) no longer holds. A
+// non-deterministic effect's marker (nondet-del.… / nondet-add.…) adds the same twins: the twin
+// is the world where the effect took place.
 void KnowledgeTask::storeForgetting(Belief& out) {
   forgotten_.clear();
   for (const AtomId marker : forgetAtoms_) {
@@ -554,8 +559,16 @@ bool KnowledgeTask::isGoalIn(std::uint32_t w) {
 
 std::uint32_t KnowledgeTask::applyIn(int op, std::uint32_t w) {
   if (!evaluator_.apply(task_.operators[op], world(w), scratch_)) return PackedSet::kMissing;
-  // Forgetting changes what the agent knows, not the true world.
-  for (const AtomId marker : forgetAtoms_) setBit(scratch_, marker, false);
+  // Forgetting changes what the agent knows, not the true world; a non-deterministic effect
+  // takes place in it or not, as nature (the seeded generator) chooses.
+  for (const AtomId marker : forgetAtoms_) {
+    if (!bit(scratch_, marker)) continue;
+    setBit(scratch_, marker, false);
+    const Auxiliary& effect = forget_[marker];
+    if (effect.nondeterministic && effect.base >= 0 && (outcomes_() & 1) != 0) {
+      setBit(scratch_, effect.base, effect.negated);
+    }
+  }
   return store(scratch_);
 }
 

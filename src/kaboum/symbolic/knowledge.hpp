@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <random>
 #include <span>
 #include <string>
 #include <unordered_map>
@@ -82,7 +83,10 @@ class KnowledgeTask {
   // World-level evaluation for simulated execution.
   bool holdsIn(const Condition& condition, std::uint32_t world);
   bool isGoalIn(std::uint32_t world);
-  std::uint32_t applyIn(int op, std::uint32_t world);  // PackedSet::kMissing if infeasible
+  // Applies `op` in one true world; each non-deterministic effect `(nondet l)` takes place or not
+  // as a generator seeded by seedOutcomes (default 0) decides. PackedSet::kMissing if infeasible.
+  std::uint32_t applyIn(int op, std::uint32_t world);
+  void seedOutcomes(std::uint64_t seed) { outcomes_.seed(seed); }
 
   // A hash of what `belief` knows apart from the values that effect applicators write (opaque
   // handles such as a geometric state's identifier, thesis Definition 5): equal for knowledge
@@ -129,16 +133,19 @@ class KnowledgeTask {
   std::vector<FluentId> kvBase_;        // per atom: fluent of a (kv.f …) atom
   std::vector<AtomId> knowledgeAtoms_;  // all (kw.…) and (kv.…) atoms
   // Per atom: (k.p …)/(k-not.p …) query K(p)/K(¬p) of `base`; (kf-del.p …)/(kf-del-not.p …)
-  // mark del(Kf, p)/del(Kf, ¬p) in a successor world.
+  // mark del(Kf, p)/del(Kf, ¬p) in a successor world, (nondet-del.p …)/(nondet-add.p …) the same
+  // loss of knowledge from a non-deterministic effect, which may also change the true world.
   struct Auxiliary {
     AtomId base = kNotKnowledge;
     bool negated = false;
+    bool nondeterministic = false;
   };
   std::vector<Auxiliary> kQuery_;
   std::vector<Auxiliary> forget_;
   std::vector<AtomId> forgetAtoms_;
   std::vector<AtomId> forgotten_;
   std::vector<std::uint64_t> scratch_;
+  std::mt19937_64 outcomes_{0};  // nature's choices in applyIn
   std::vector<std::uint64_t> anyWorld_;
   std::vector<std::uint64_t> allWorlds_;
   Belief summarized_;

@@ -155,6 +155,14 @@ struct Domain {
   std::vector<Function> functions;
   std::vector<Module> modules;
   std::vector<Action> actions;
+  // Names actions use that :constants does not declare, and where each is first used: constants
+  // of type object that the problem must declare as objects (as Contingent-FF reads them).
+  struct UndeclaredConstant {
+    int constant = 0;
+    SourcePos pos;
+  };
+  std::vector<UndeclaredConstant> undeclaredConstants;
+  std::vector<std::string> warnings;  // "file:line:col: ..." of inconsistencies read anyway
 
   int findType(const std::string& wanted) const;
   int findPredicate(const std::string& wanted) const;
@@ -186,6 +194,7 @@ struct Problem {
   Formula goal;
   std::vector<int> goalSlotTypes;  // slots of quantifiers in the goal
   std::vector<std::string> goalSlotNames;
+  std::vector<std::string> warnings;  // "file:line:col: ..." of inconsistencies read anyway
 
   ObjectId findObject(const std::string& wanted) const;
   // Objects of `type` or any of its subtypes, in id order.
@@ -193,7 +202,9 @@ struct Problem {
 };
 
 // Parse PDDL text (`file` names it in errors). Throw InputError "file:line:col: ..." on syntax
-// errors, undefined names, arity mismatches and unsupported requirements.
+// errors, undefined names, arity mismatches and unsupported requirements. What other planners
+// read despite an inconsistency (a problem naming another domain, undeclared types) is read and
+// reported in `warnings`; docs/formats.md lists both.
 Domain parseDomain(std::string_view text, const std::string& file);
 Problem parseProblem(std::string_view text, const std::string& file, const Domain& domain);
 // Same from already read S-expressions (front ends that rewrite the tree first, e.g. contingent).

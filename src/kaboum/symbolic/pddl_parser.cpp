@@ -114,7 +114,7 @@ class Parser {
 // Resolves formulas, terms and effects for one scope (an action, a module or the goal).
 class ScopeParser : public Parser {
  public:
-  using ObjectLookup = std::function<int(const std::string&)>;
+  using ObjectLookup = std::function<int(const SExpr&)>;
 
   ScopeParser(const std::string& file, const Domain& domain, ObjectLookup lookupObject,
               std::vector<int>& slotTypes, std::vector<std::string>& slotNames)
@@ -158,7 +158,7 @@ class ScopeParser : public Parser {
         }
         fail(expr, "undefined variable '" + expr.text + "'");
       }
-      const int object = lookupObject_(expr.text);
+      const int object = lookupObject_(expr);
       if (object < 0) fail(expr, "undefined constant or object '" + expr.text + "'");
       out.index = object;
       return out;
@@ -363,6 +363,17 @@ class ScopeParser : public Parser {
       popVariables(out.slots.size());
       return out;
     }
+    if (domain_.findPredicate(head) < 0) {
+      if (head == "nondet") {
+        fail(expr.items[0],
+             "'nondet' (a non-deterministic effect of Contingent-FF's dialect) needs the "
+             "knowledge-level planner: kaboum contingent");
+      }
+      if (head == "oneof") fail(expr.items[0], "unsupported: non-deterministic 'oneof' effects");
+      if (head == "probabilistic") {
+        fail(expr.items[0], "unsupported: probabilistic effects ('probabilistic')");
+      }
+    }
     if (head == "when") {
       if (expr.items.size() != 3) fail(expr, "'when' takes a condition and an effect");
       out.kind = Effect::Kind::When;
@@ -433,7 +444,9 @@ class DomainParser : public Parser {
     domain_.types.push_back({"object", -1});
     const SExpr& define = expectDefine(top, "domain");
     domain_.name = expectName(define.items[1].items[1], "a domain name");
-    // Declarations first, actions last, so actions may use anything declared anywhere.
+    // Requirements and types first, then the other declarations in any order (as Fast Downward
+    // reads them), modules and actions last, so each may use anything declared anywhere.
+    std::vector<const SExpr*> declarations;
     std::vector<const SExpr*> actions;
     for (std::size_t i = 2; i < define.items.size(); ++i) {
       const SExpr& section = expectList(define.items[i], "a domain section");
@@ -443,7 +456,18 @@ class DomainParser : public Parser {
         requirements(section);
       } else if (key == ":types") {
         types(section);
-      } else if (key == ":constants") {
+      } else {
+        declarations.push_back(&section);
+      }
+    }
+    for (std::size_t i = 2; i < define.items.size(); ++i) {
+      const SExpr& section = define.items[i];
+      if (!section.startsWith(":types")) undeclaredTypes(section, section.startsWith(":functions"));
+    }
+    for (const SExpr* declaration : declarations) {
+      const SExpr& section = *declaration;
+      const std::string& key = section.items[0].text;
+      if (key == ":constants") {
         constants(section);
       } else if (key == ":predicates") {
         predicates(section);
@@ -474,6 +498,27 @@ class DomainParser : public Parser {
       }
       domain_.requirements.push_back(name);
     }
+  }
+
+  // Types that a typed list names after '-' but :types does not declare: declared under object,
+  // with a warning, as Contingent-FF and CLG read them (CLG's medpks domains type constants so).
+  // A '-' heading a list is subtraction; `functionResults`: the :functions section, whose '-
+  // number' is no type.
+  void undeclaredTypes(const SExpr& expr, bool functionResults = false) {
+    if (!expr.isList()) return;
+    for (std::size_t i = 1; i + 1 < expr.items.size(); ++i) {
+      const SExpr& type = expr.items[i + 1];
+      if (!expr.items[i].isAtom("-") || !type.isAtom() || type.text.empty() ||
+          type.text.front() == '?' || (functionResults && type.isAtom("number")) ||
+          domain_.findType(type.text) >= 0) {
+        continue;
+      }
+      domain_.types.push_back({type.text, 0});
+      domain_.warnings.push_back(locate(
+          file_, "type '" + type.text + "' is not declared in :types; read as a subtype of object",
+          type.pos.line, type.pos.column));
+    }
+    for (const SExpr& item : expr.items) undeclaredTypes(item);
   }
 
   int typeOrDeclare(const SExpr& name) {
@@ -572,8 +617,7 @@ class DomainParser : public Parser {
       std::vector<int> slotTypes;
       std::vector<std::string> slotNames;
       ScopeParser scope(
-          file_, domain_, [this](const std::string& n) { return constantId(n); }, slotTypes,
-          slotNames);
+          file_, domain_, [this](const SExpr& n) { return constantId(n); }, slotTypes, slotNames);
       scope.declareVariables(decl.items, at, paramEnd);
       module.paramTypes = slotTypes;
       at = paramEnd;
@@ -620,10 +664,20 @@ class DomainParser : public Parser {
     return out;
   }
 
-  int constantId(const std::string& name) const {
-    const auto it = std::find(domain_.constantNames.begin(), domain_.constantNames.end(), name);
-    return it == domain_.constantNames.end() ? -1
-                                             : static_cast<int>(it - domain_.constantNames.begin());
+  // A name in an action or module: a declared constant, or else a constant of type object the
+  // problem must declare as an object (Contingent-FF and Fast Downward resolve such names against
+  // the problem's objects; Contingent-FF's medpks domains name illnesses so).
+  int constantId(const SExpr& name) {
+    const auto it =
+        std::find(domain_.constantNames.begin(), domain_.constantNames.end(), name.text);
+    if (it != domain_.constantNames.end()) {
+      return static_cast<int>(it - domain_.constantNames.begin());
+    }
+    domain_.undeclaredConstants.push_back(
+        {static_cast<int>(domain_.constantNames.size()), name.pos});
+    domain_.constantNames.push_back(name.text);
+    domain_.constantTypes.push_back(0);
+    return static_cast<int>(domain_.constantNames.size()) - 1;
   }
 
   void action(const SExpr& section) {
@@ -634,7 +688,7 @@ class DomainParser : public Parser {
       fail(section.items[1], "duplicate action '" + action.name + "'");
     }
     ScopeParser scope(
-        file_, domain_, [this](const std::string& n) { return constantId(n); }, action.slotTypes,
+        file_, domain_, [this](const SExpr& n) { return constantId(n); }, action.slotTypes,
         action.slotNames);
     const SExpr* precondition = nullptr;
     const SExpr* effect = nullptr;
@@ -672,6 +726,7 @@ class ProblemParser : public Parser {
     problem_.file = file_;
     problem_.objectNames = domain_.constantNames;
     problem_.objectTypes = domain_.constantTypes;
+    redeclared_.assign(domain_.constantNames.size(), 0);
     const SExpr& define = expectDefine(top, "problem");
     problem_.name = expectName(define.items[1].items[1], "a problem name");
     const SExpr* init = nullptr;
@@ -682,9 +737,14 @@ class ProblemParser : public Parser {
       const std::string& key = section.items[0].text;
       if (key == ":domain") {
         if (section.items.size() != 2) fail(section, "expected '(:domain NAME)'");
-        if (expectName(section.items[1], "a domain name") != domain_.name) {
-          fail(section.items[1],
-               "problem is for domain '" + section.items[1].text + "', not '" + domain_.name + "'");
+        const SExpr& name = section.items[1];
+        if (expectName(name, "a domain name") != domain_.name) {
+          // Published problems do not always name their domain right; other planners read them.
+          problem_.warnings.push_back(locate(file_,
+                                             "problem names domain '" + name.text + "' but " +
+                                                 domain_.file + " defines domain '" + domain_.name +
+                                                 "'; reading it with that domain",
+                                             name.pos.line, name.pos.column));
         }
       } else if (key == ":requirements") {
         for (std::size_t k = 1; k < section.items.size(); ++k) {
@@ -706,11 +766,18 @@ class ProblemParser : public Parser {
         fail(section.items[0], "unknown problem section '" + key + "'");
       }
     }
+    for (const auto& [constant, pos] : domain_.undeclaredConstants) {
+      if (redeclared_[constant]) continue;
+      throw InputError(locate(domain_.file,
+                              "undefined constant or object '" + domain_.constantNames[constant] +
+                                  "': neither a domain constant nor an object of " + file_,
+                              pos.line, pos.column));
+    }
     if (init != nullptr) initial(*init);
     if (goal == nullptr) fail(define, "missing ':goal'");
     if (goal->items.size() != 2) fail(*goal, "expected one goal formula");
     ScopeParser scope(
-        file_, domain_, [this](const std::string& n) { return problem_.findObject(n); },
+        file_, domain_, [this](const SExpr& n) { return problem_.findObject(n.text); },
         problem_.goalSlotTypes, problem_.goalSlotNames);
     problem_.goal = scope.formula(goal->items[1]);
     return std::move(problem_);
@@ -719,16 +786,45 @@ class ProblemParser : public Parser {
  private:
   void objects(const SExpr& section) {
     for (const auto& [name, type] : typedList(section.items, 1, false, section.items.size())) {
-      if (problem_.findObject(name->text) >= 0) {
-        // Re-declaring a domain constant as an object is common and harmless.
-        if (problem_.findObject(name->text) < static_cast<int>(domain_.constantNames.size())) {
-          continue;
-        }
+      const int declared = objectType(type);
+      const ObjectId existing = problem_.findObject(name->text);
+      if (existing < 0) {
+        problem_.objectNames.push_back(name->text);
+        problem_.objectTypes.push_back(declared);
+        continue;
+      }
+      if (existing >= static_cast<ObjectId>(domain_.constantNames.size())) {
         fail(*name, "duplicate object '" + name->text + "'");
       }
-      problem_.objectNames.push_back(name->text);
-      problem_.objectTypes.push_back(typeId(domain_, type));
+      // A domain constant declared again as an object, as Contingent-FF accepts: it is one object
+      // of the narrower of the two types.
+      int& constantType = problem_.objectTypes[existing];
+      if (domain_.isSubtype(declared, constantType)) {
+        constantType = declared;
+      } else if (!domain_.isSubtype(constantType, declared)) {
+        fail(*name, "object '" + name->text + "' of type '" + domain_.types[declared].name +
+                        "' is a domain constant of the unrelated type '" +
+                        domain_.types[constantType].name + "'");
+      }
+      redeclared_[existing] = 1;
     }
+  }
+
+  // The type of problem objects; one the domain never names is read as object, with a warning
+  // (no action or predicate can tell them apart), once per place it is written.
+  int objectType(const SExpr* type) {
+    if (type != nullptr && type->isAtom() && !type->text.empty() &&
+        domain_.findType(type->text) < 0) {
+      std::string warning = locate(file_,
+                                   "type '" + type->text + "' is not declared by " + domain_.file +
+                                       "; its objects are of type object",
+                                   type->pos.line, type->pos.column);
+      if (problem_.warnings.empty() || problem_.warnings.back() != warning) {
+        problem_.warnings.push_back(std::move(warning));
+      }
+      return 0;
+    }
+    return typeId(domain_, type);
   }
 
   std::vector<ObjectId> groundArgs(const SExpr& call) const {
@@ -748,6 +844,11 @@ class ProblemParser : public Parser {
       if (fact.kind != SExpr::Kind::List || fact.items.empty()) fail(fact, "expected an atom");
       const std::string& head = expectName(fact.items[0], "a predicate name");
       if (head == "not") continue;  // closed world: negative facts are implicit
+      if (head == "invariant" && domain_.findPredicate(head) < 0) {
+        fail(fact.items[0],
+             "PO-PRP's '(invariant …)' (uncertain initial knowledge) needs the knowledge-level "
+             "planner: kaboum contingent");
+      }
       if (head == "=") {
         if (fact.items.size() != 3) fail(fact, "expected '(= (f args) value)'");
         const SExpr& target = fact.items[1];
@@ -788,6 +889,7 @@ class ProblemParser : public Parser {
 
   const Domain& domain_;
   Problem problem_;
+  std::vector<char> redeclared_;  // per domain constant: declared again as an object
 };
 
 }  // namespace

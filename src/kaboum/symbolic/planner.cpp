@@ -34,6 +34,8 @@ PlanReport planFiles(const std::string& domainPath, const std::string& problemPa
   const double parseSeconds = secondsSince(parseStart);
   PlanReport report = plan(domain, problem, procedures, options);
   report.parseSeconds = parseSeconds;
+  report.warnings = domain.warnings;
+  report.warnings.insert(report.warnings.end(), problem.warnings.begin(), problem.warnings.end());
   return report;
 }
 

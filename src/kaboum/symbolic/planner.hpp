@@ -18,6 +18,7 @@ struct PlanReport {
   std::vector<ModuleStatistics> modules;
   double parseSeconds = 0.0;
   double groundSeconds = 0.0;
+  std::vector<std::string> warnings;  // of the domain and problem files (planFiles)
 };
 
 // Plans for the PDDL files; attachments come from `procedures` and from libraries the domain

@@ -16,6 +16,7 @@ class Reader {
 
   std::vector<SExpr> readAll() {
     std::vector<SExpr> out;
+    if (text_.starts_with("\xEF\xBB\xBF")) at_ = 3;  // a UTF-8 byte order mark
     skipBlank();
     while (at_ < text_.size()) {
       out.push_back(readOne(0));
@@ -31,8 +32,15 @@ class Reader {
 
   SourcePos here() const { return {line_, column_}; }
 
+  // A line ends at "\n", "\r\n" or a lone "\r" (Python's universal newlines, as Fast Downward
+  // reads files).
+  bool endsLine(std::size_t at) const {
+    return text_[at] == '\n' ||
+           (text_[at] == '\r' && (at + 1 == text_.size() || text_[at + 1] != '\n'));
+  }
+
   void advance() {
-    if (text_[at_] == '\n') {
+    if (endsLine(at_)) {
       ++line_;
       column_ = 1;
     } else {
@@ -45,8 +53,8 @@ class Reader {
     while (at_ < text_.size()) {
       const char c = text_[at_];
       if (c == ';') {
-        while (at_ < text_.size() && text_[at_] != '\n') advance();
-      } else if (std::isspace(static_cast<unsigned char>(c))) {
+        while (at_ < text_.size() && !endsLine(at_)) advance();
+      } else if (isBlank(c)) {
         advance();
       } else {
         return;
@@ -54,9 +62,14 @@ class Reader {
     }
   }
 
+  // Whitespace as Python's str.split() sees it in ASCII text: also the separators 0x1c-0x1f.
+  static bool isBlank(char c) {
+    const auto ch = static_cast<unsigned char>(c);
+    return std::isspace(ch) || (ch >= 0x1c && ch <= 0x1f);
+  }
+
   static bool isDelimiter(char c) {
-    return c == '(' || c == ')' || c == '[' || c == ']' || c == ';' ||
-           std::isspace(static_cast<unsigned char>(c));
+    return c == '(' || c == ')' || c == '[' || c == ']' || c == ';' || isBlank(c);
   }
 
   SExpr readOne(std::size_t depth) {
@@ -86,9 +99,13 @@ class Reader {
       }
     }
     if (c == ')' || c == ']') fail(std::string("unexpected '") + c + "'", node.pos);
-    while (at_ < text_.size() && !isDelimiter(text_[at_])) {
+    // Fast Downward's tokenizer rules: a '?' starts a new token, so "(aircraft?a)" reads as
+    // "aircraft ?a"; names may hold any other printable ASCII character ('-', digits, ':', '.').
+    while (at_ < text_.size() && !isDelimiter(text_[at_]) &&
+           !(text_[at_] == '?' && !node.text.empty())) {
       const auto ch = static_cast<unsigned char>(text_[at_]);
-      if (ch < 0x20 || ch >= 0x7f) fail("unexpected character in name", here());
+      if (ch >= 0x80) fail("non-ASCII character outside a comment", here());
+      if (ch < 0x20 || ch == 0x7f) fail("unexpected control character in name", here());
       node.original.push_back(static_cast<char>(ch));
       node.text.push_back(static_cast<char>(std::tolower(ch)));
       advance();

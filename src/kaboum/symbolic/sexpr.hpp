@@ -1,5 +1,6 @@
 // S-expression reader for PDDL text: lists, symbols and numbers with their line:column, so every
-// later stage can report errors as "file:line:col: ...". Square brackets mark PDDL/M module calls.
+// later stage can report errors as "file:line:col: ...". The lexical rules are those of Fast
+// Downward's translator (docs/formats.md#lexical-rules); square brackets mark PDDL/M module calls.
 #pragma once
 
 #include <string>
