@@ -187,7 +187,7 @@ TEST(CliContingent, BadInputGivesOneLineAndExitCodeTwo) {
       "contingent-validate " + domain + " " + good + " " + okPlan + " --hidden " + hidden,
       "h.pddl:2:2: hidden state is not one of the initial worlds");
   expectBadInput("force-sensing 0", "n must be at least 1");
-  expectBadInput("contingent " + domain + " " + good + " --search ids", "--search");
+  expectBadInput("contingent " + domain + " " + good + " --search beam", "--search");
   const std::string forgetDomain = writeTempFile(
       "forget.pddl",
       "(define (domain d) (:predicates (a) (b))\n  (:action t :effect (del kq (b))))\n");

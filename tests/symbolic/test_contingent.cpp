@@ -522,14 +522,15 @@ TEST_P(SearchMode, EbtcsSolvesAndExecutesEveryHiddenState) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Contingent, SearchMode, ::testing::Values("gbfs", "astar", "bfs", "dfs"));
+INSTANTIATE_TEST_SUITE_P(Contingent, SearchMode,
+                         ::testing::Values("gbfs", "astar", "bfs", "dfs", "ids"));
 
 TEST(SearchModeBadInput, UnknownModeIsAnInputError) {
   const ContingentProblem contingent =
       parseContingent(forceSensingDomain(), "fs-domain", forceSensingProblem(1), "fs-1");
   KnowledgeTask task(contingent, ProcedureRegistry{});
   ContingentOptions options;
-  options.mode = "ids";
+  options.mode = "beam";
   EXPECT_THROW(solveContingent(task, options), InputError);
 }
 
