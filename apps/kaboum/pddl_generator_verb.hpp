@@ -1,5 +1,6 @@
 // Verbs that write a generated PDDL domain and problem for a size n (`stacked`, `force-sensing`):
-// the options, the files and the printed paths are the same for all of them.
+// the options, the files and the printed paths are the same for all of them (`remove-objects`
+// writes its files with writeGeneratedFiles too).
 #pragma once
 
 #include <functional>
