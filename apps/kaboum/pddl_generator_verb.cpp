@@ -8,6 +8,22 @@
 #include "kaboum/core/error.hpp"
 
 namespace kaboum::cli {
+
+void writeGeneratedFiles(const std::string& dir, const std::vector<GeneratedFile>& files,
+                         bool quiet) {
+  std::error_code ignored;
+  std::filesystem::create_directories(dir, ignored);
+  for (const auto& [name, text] : files) {
+    const std::filesystem::path path = std::filesystem::path(dir) / name;
+    std::ofstream out(path);
+    if (!out || !(out << text)) throw InputError(locate(path.string(), "cannot write file"));
+  }
+  if (quiet) return;
+  for (const GeneratedFile& file : files) {
+    std::cout << (std::filesystem::path(dir) / file.name).string() << "\n";
+  }
+}
+
 namespace {
 
 struct GeneratorOptions {
@@ -16,21 +32,12 @@ struct GeneratorOptions {
   bool quiet = false;
 };
 
-void writeFile(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream out(path);
-  if (!out || !(out << text)) throw InputError(locate(path.string(), "cannot write file"));
-}
-
 int runGenerator(const PddlGenerator& generator, const GeneratorOptions& options) {
   const std::string problem = generator.problem(options.n);
-  const std::filesystem::path dir(options.outDir);
-  std::error_code ignored;
-  std::filesystem::create_directories(dir, ignored);
-  const auto domainPath = dir / (generator.fileStem + "-domain.pddl");
-  const auto problemPath = dir / (generator.fileStem + "-" + std::to_string(options.n) + ".pddl");
-  writeFile(domainPath, generator.domain());
-  writeFile(problemPath, problem);
-  if (!options.quiet) std::cout << domainPath.string() << "\n" << problemPath.string() << "\n";
+  writeGeneratedFiles(options.outDir,
+                      {{generator.fileStem + "-domain.pddl", generator.domain()},
+                       {generator.fileStem + "-" + std::to_string(options.n) + ".pddl", problem}},
+                      options.quiet);
   return 0;
 }
 

@@ -1,9 +1,11 @@
 // Verbs that write a generated PDDL domain and problem for a size n (`stacked`, `force-sensing`):
-// the options, the files and the printed paths are the same for all of them.
+// the options, the files and the printed paths are the same for all of them (`remove-objects`
+// writes its files with writeGeneratedFiles too).
 #pragma once
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "verb.hpp"
 
@@ -15,6 +17,16 @@ struct PddlGenerator {
   std::function<std::string()> domain;        // the domain text
   std::function<std::string(int n)> problem;  // the problem text; throws InputError for bad n
 };
+
+struct GeneratedFile {
+  std::string name;  // file name inside the output directory
+  std::string text;
+};
+
+// Writes the files into `dir` (created when missing) and, unless `quiet`, prints their paths;
+// InputError naming the file that cannot be written.
+void writeGeneratedFiles(const std::string& dir, const std::vector<GeneratedFile>& files,
+                         bool quiet);
 
 // Declares `n`, `--out-dir` and `--quiet` on `command`; the runner writes both files.
 VerbRunner setupPddlGeneratorVerb(CLI::App& command, PddlGenerator generator);
