@@ -7,9 +7,35 @@
 #include <filesystem>
 #include <fstream>
 
+#include "kaboum/core/error.hpp"
+
 namespace kaboum::symbolic::testing {
 
 using namespace kaboum::testing;
+
+std::string errorOf(const std::string& domain, const std::string& problem) {
+  try {
+    const ContingentProblem contingent = parseContingent(domain, "d.pddl", problem, "p.pddl");
+    KnowledgeTask task(contingent, ProcedureRegistry{});
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+ContingentResult solveAndValidate(KnowledgeTask& task, const ContingentOptions& options) {
+  ContingentResult result = solveContingent(task, options);
+  if (result.status == PlannerStatus::Solved) {
+    const std::string text = formatPlanTree(task, result.plan);
+    const PlanTree parsed = parsePlanTree(text, "plan", task);
+    const TreeValidation validation = validatePlanTree(task, parsed, "plan");
+    EXPECT_TRUE(validation.valid) << validation.message << "\n" << text;
+    const TreeMetrics original = measure(result.plan);
+    EXPECT_EQ(validation.metrics.actions, original.actions);
+    EXPECT_EQ(validation.metrics.leaves, original.leaves);
+  }
+  return result;
+}
 
 CommandResult runCli(const std::string& arguments) {
   CommandResult result;

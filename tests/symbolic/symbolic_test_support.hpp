@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "kaboum/symbolic/contingent.hpp"
 #include "kaboum/symbolic/planner.hpp"
 #include "kaboum/symbolic/validator.hpp"
 #include "kaboum/testing/data_paths.hpp"
@@ -53,6 +54,18 @@ inline PlanReport planAndValidate(const Domain& domain, const Problem& problem,
   }
   return report;
 }
+
+inline std::string contingentPath(const std::string& relative) {
+  return pddlPath("contingent/" + relative);
+}
+
+// The InputError message of reading a contingent domain ("d.pddl") and problem ("p.pddl") and
+// building their knowledge task; "" if there is none.
+std::string errorOf(const std::string& domain, const std::string& problem);
+
+// Solves, checks that the printed tree reads back with the same size and that every branch
+// validates, and returns the result.
+ContingentResult solveAndValidate(KnowledgeTask& task, const ContingentOptions& options = {});
 
 struct CommandResult {
   int exitCode = -1;

@@ -18,39 +18,13 @@ using namespace kaboum::testing;
 
 namespace {
 
+using testing::contingentPath;
+using testing::errorOf;
 using testing::pddlPath;
-
-std::string contingentPath(const std::string& relative) {
-  return pddlPath("contingent/" + relative);
-}
+using testing::solveAndValidate;
 
 ContingentProblem parseTexts(const std::string& domain, const std::string& problem) {
   return parseContingent(domain, "d.pddl", problem, "p.pddl");
-}
-
-std::string errorOf(const std::string& domain, const std::string& problem) {
-  try {
-    const ContingentProblem contingent = parseTexts(domain, problem);
-    KnowledgeTask task(contingent, ProcedureRegistry{});
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-// Solves, validates every branch of the printed tree and returns the result.
-ContingentResult solveAndValidate(KnowledgeTask& task, const ContingentOptions& options = {}) {
-  ContingentResult result = solveContingent(task, options);
-  if (result.status == PlannerStatus::Solved) {
-    const std::string text = formatPlanTree(task, result.plan);
-    const PlanTree parsed = parsePlanTree(text, "plan", task);
-    const TreeValidation validation = validatePlanTree(task, parsed, "plan");
-    EXPECT_TRUE(validation.valid) << validation.message << "\n" << text;
-    const TreeMetrics original = measure(result.plan);
-    EXPECT_EQ(validation.metrics.actions, original.actions);
-    EXPECT_EQ(validation.metrics.leaves, original.leaves);
-  }
-  return result;
 }
 
 // --- knowledge states and primitive queries -------------------------------------------------

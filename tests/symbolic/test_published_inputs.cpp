@@ -15,35 +15,11 @@ using namespace kaboum::testing;
 
 namespace {
 
-using testing::pddlPath;
+using testing::contingentPath;
+using testing::errorOf;
 using testing::runCli;
+using testing::solveAndValidate;
 using testing::writeTempFile;
-
-std::string contingentPath(const std::string& relative) {
-  return pddlPath("contingent/" + relative);
-}
-
-std::string errorOf(const std::string& domain, const std::string& problem) {
-  try {
-    const ContingentProblem contingent = parseContingent(domain, "d.pddl", problem, "p.pddl");
-    KnowledgeTask task(contingent, ProcedureRegistry{});
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-// Solves, checks that every branch of the printed tree validates, and returns the result.
-ContingentResult solveAndValidate(KnowledgeTask& task) {
-  ContingentResult result = solveContingent(task, {});
-  if (result.status == PlannerStatus::Solved) {
-    const std::string text = formatPlanTree(task, result.plan);
-    const TreeValidation validation =
-        validatePlanTree(task, parsePlanTree(text, "plan", task), "plan");
-    EXPECT_TRUE(validation.valid) << validation.message << "\n" << text;
-  }
-  return result;
-}
 
 // --- (nondet l): l may or may not take place ------------------------------------------------
 
