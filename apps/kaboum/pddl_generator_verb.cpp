@@ -31,6 +31,11 @@ int runGenerator(const PddlGenerator& generator, const GeneratorOptions& options
   writeFile(domainPath, generator.domain());
   writeFile(problemPath, problem);
   if (!options.quiet) std::cout << domainPath.string() << "\n" << problemPath.string() << "\n";
+  for (const PddlGenerator::File& file : generator.more) {
+    const auto path = dir / file.name(options.n);
+    writeFile(path, file.text(options.n));
+    if (!options.quiet) std::cout << path.string() << "\n";
+  }
   return 0;
 }
 
@@ -39,7 +44,7 @@ int runGenerator(const PddlGenerator& generator, const GeneratorOptions& options
 VerbRunner setupPddlGeneratorVerb(CLI::App& command, PddlGenerator generator) {
   auto options = std::make_shared<GeneratorOptions>();
   command.add_option("n", options->n, generator.sizeHelp)->required();
-  command.add_option("--out-dir", options->outDir, "Directory for the PDDL files")
+  command.add_option("--out-dir", options->outDir, "Directory for the files")
       ->capture_default_str();
   command.add_flag("--quiet", options->quiet, "Do not print the written paths");
   return [options, generator = std::move(generator)] { return runGenerator(generator, *options); };
