@@ -14,14 +14,16 @@ namespace {
 
 // The layout, in metres: the table's top and centre, the bottles (their height, and the circle
 // they stand on: at least kCircleRadius from the centre, and kLocationSpacing apart along it),
-// the half-widths of a location's square and of `any`.
+// the half-widths of a location's square and of `any`, a strip across the middle that both arms
+// reach (robot1 as far as x 0.575, robot2 from x 0.425) and no location overlaps.
 constexpr double kTableTop = 0.30;
 constexpr double kCentreX = 0.5;
 constexpr double kBottleHeight = 0.12;
 constexpr double kCircleRadius = 0.18;
 constexpr double kLocationSpacing = 0.095;
 constexpr double kLocationHalfWidth = 0.04;
-constexpr double kAnyHalfWidth = 0.07;
+constexpr double kAnyHalfWidthX = 0.05;
+constexpr double kAnyHalfWidthY = kCircleRadius - kLocationHalfWidth - 0.02;
 constexpr double kRegionTop = kTableTop + 0.2;
 
 void checkSize(int n) {
@@ -39,9 +41,10 @@ std::pair<double, double> locationCentre(int i, int n) {
   return {kCentreX + radius * std::cos(angle), radius * std::sin(angle)};
 }
 
-std::string box(double x, double y, double halfWidth) {
+// A region on the table: the box from the table's top to kRegionTop over a rectangle.
+std::string box(double x, double y, double halfWidthX, double halfWidthY) {
   return fmt::format("{{box: {{min: [{:.3f}, {:.3f}, {:.2f}], max: [{:.3f}, {:.3f}, {:.2f}]}}}}",
-                     x - halfWidth, y - halfWidth, kTableTop, x + halfWidth, y + halfWidth,
+                     x - halfWidthX, y - halfWidthY, kTableTop, x + halfWidthX, y + halfWidthY,
                      kRegionTop);
 }
 
@@ -196,10 +199,11 @@ objects:
   text += fmt::format(
       "\nlocations:\n  - name: any                 # the middle, both arms reach it\n"
       "    region: {}\n",
-      box(kCentreX, 0, kAnyHalfWidth));
+      box(kCentreX, 0, kAnyHalfWidthX, kAnyHalfWidthY));
   for (int i = 1; i <= n; ++i) {
     const auto [x, y] = locationCentre(i, n);
-    text += fmt::format("  - name: loc{}\n    region: {}\n", i, box(x, y, kLocationHalfWidth));
+    text += fmt::format("  - name: loc{}\n    region: {}\n", i,
+                        box(x, y, kLocationHalfWidth, kLocationHalfWidth));
   }
   return text;
 }
