@@ -34,10 +34,13 @@ struct GeneratorOptions {
 
 int runGenerator(const PddlGenerator& generator, const GeneratorOptions& options) {
   const std::string problem = generator.problem(options.n);
-  writeGeneratedFiles(options.outDir,
-                      {{generator.fileStem + "-domain.pddl", generator.domain()},
-                       {generator.fileStem + "-" + std::to_string(options.n) + ".pddl", problem}},
-                      options.quiet);
+  std::vector<GeneratedFile> files = {
+      {generator.fileStem + "-domain.pddl", generator.domain()},
+      {generator.fileStem + "-" + std::to_string(options.n) + ".pddl", problem}};
+  for (const PddlGenerator::File& file : generator.more) {
+    files.push_back({file.name(options.n), file.text(options.n)});
+  }
+  writeGeneratedFiles(options.outDir, files, options.quiet);
   return 0;
 }
 
@@ -46,7 +49,7 @@ int runGenerator(const PddlGenerator& generator, const GeneratorOptions& options
 VerbRunner setupPddlGeneratorVerb(CLI::App& command, PddlGenerator generator) {
   auto options = std::make_shared<GeneratorOptions>();
   command.add_option("n", options->n, generator.sizeHelp)->required();
-  command.add_option("--out-dir", options->outDir, "Directory for the PDDL files")
+  command.add_option("--out-dir", options->outDir, "Directory for the files")
       ->capture_default_str();
   command.add_flag("--quiet", options->quiet, "Do not print the written paths");
   return [options, generator = std::move(generator)] { return runGenerator(generator, *options); };

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <numbers>
 
 #include "kaboum/core/error.hpp"
 #include "kaboum/core/text.hpp"
@@ -54,6 +55,28 @@ const char* toString(GeometricStep::Kind kind) {
   return "?";
 }
 
+std::optional<std::size_t> holderOf(const GeometricState& state, std::size_t object) {
+  for (std::size_t r = 0; r < state.robots.size(); ++r) {
+    const std::vector<std::size_t>& held = state.robots[r].heldObjects;
+    if (std::find(held.begin(), held.end(), object) != held.end()) return r;
+  }
+  return std::nullopt;
+}
+
+Pose objectPose(const World& world, const GeometricState& state, std::size_t object) {
+  const std::optional<std::size_t> holder = holderOf(state, object);
+  if (!holder) return world.scene().pose(object, state.placements);
+  const RobotState& robot = state.robots[*holder];
+  const std::size_t index = static_cast<std::size_t>(
+      std::find(robot.heldObjects.begin(), robot.heldObjects.end(), object) -
+      robot.heldObjects.begin());
+  const RobotCollisionModel& model = world.robots()[*holder].collision;
+  std::vector<Pose> links(model.model().links().size());
+  model.model().linkPoses(robot.configuration, links);
+  const Attachment& attachment = robot.held[index];
+  return model.basePose() * links[static_cast<std::size_t>(attachment.link)] * attachment.inLink;
+}
+
 GeometricAttachments::GeometricAttachments(const World& world, TampOptions options)
     : world_(&world), options_(std::move(options)), placements_(world), scratch_(world.scratch()) {
   map_.intern(world.initialState());
@@ -84,10 +107,9 @@ struct Signature {
 
 const std::vector<Signature>& signatures() {
   static const std::vector<Signature> table{
-      {"move", 1, true},           {"moveHome", 1, true},
-      {"pickUp", 2, true},         {"putDown", 3, true},
-      {"isColliding", 0, false},   {"isReachable", 2, false},
-      {"isInside", 2, false},      {"isOnSupportSurface", 1, false},
+      {"move", 1, true},           {"moveHome", 1, true},  {"pickUp", 2, true},
+      {"putDown", 3, true},        {"handover", 3, true},  {"isColliding", 0, false},
+      {"isReachable", 2, false},   {"isInside", 2, false}, {"isOnSupportSurface", 1, false},
       {"freeSpaceFound", 2, false}};
   return table;
 }
@@ -136,6 +158,7 @@ void GeometricAttachments::registerProcedures(symbolic::ProcedureRegistry& regis
   effect("moveHome", &GeometricAttachments::moveHome);
   effect("pickUp", &GeometricAttachments::pickUp);
   effect("putDown", &GeometricAttachments::putDown);
+  effect("handover", &GeometricAttachments::handover);
   checker("isColliding", &GeometricAttachments::isColliding);
   checker("isReachable", &GeometricAttachments::isReachable);
   checker("isInside", &GeometricAttachments::isInside);
@@ -346,6 +369,50 @@ int GeometricAttachments::toolLink(const Arm& arm) const {
       .value();
 }
 
+std::string GeometricAttachments::approachableGrasp(const GeometricState& state, const Arm& arm,
+                                                    std::size_t object, const Pose& objectPose,
+                                                    std::mt19937_64& rng,
+                                                    ApproachableGrasp& found) {
+  motion::ToolKinematics& kinematics = tool(arm);
+  GraspSampler sampler(*world_, kinematics);
+  const Stopwatch ik;
+  const std::vector<GraspCandidate> grasps =
+      sampler.sample(object, objectPose, state.robots[arm.robot].configuration, rng);
+  // The first IK solution of the sample whose pre-grasp is reachable on its branch and free.
+  const motion::MotionGroup group(*world_, state, {arm.robot});
+  std::string reason =
+      grasps.empty() ? "no IK solution for the grasp sample" : "no IK solution for the pre-grasp";
+  for (const GraspCandidate& grasp : grasps) {
+    const Pose tcpAtGrasp = objectPose * grasp.tcpInObject;
+    std::optional<std::vector<double>> preGrasp = kinematics.solveNear(
+        tcpAtGrasp * Eigen::Translation3d(0, 0, -options_.approachDistance), grasp.configuration);
+    if (!preGrasp) continue;
+    const std::optional<std::string> problem = motion::configurationProblem(group, *preGrasp, 0);
+    if (!problem) {
+      found = {std::move(*preGrasp), tcpAtGrasp};
+      reason.clear();
+      break;
+    }
+    reason = "pre-grasp: " + *problem;
+  }
+  ++statistics_.ikCalls;
+  statistics_.ikSeconds += ik.seconds();
+  return reason;
+}
+
+std::string GeometricAttachments::approachGrasp(GeometricState& state, const Arm& arm,
+                                                const Pose& tcpAtGrasp, const Pose& objectPose,
+                                                motion::Waypoints& approach, Pose& objectInLink) {
+  motion::MotionResult path = line(state, arm, tcpAtGrasp);
+  if (path.status != PlannerStatus::Solved) return "approach: " + path.message;
+  state.robots[arm.robot].configuration = path.path.back();
+  motion::ToolKinematics& kinematics = tool(arm);
+  const Pose tcp = kinematics.tcpPose(path.path.back());
+  objectInLink = (tcp * kinematics.tcp().inverse()).inverse() * objectPose;
+  approach = std::move(path.path);
+  return {};
+}
+
 // One grasp sample of pickUp: IK for the grasp and its pre-grasp (approachDistance back along the
 // tool's z axis), a certified transit path to the pre-grasp, the Cartesian approach, the grasp,
 // and a Cartesian lift of liftHeight holding the object. Empty when it works, else why not.
@@ -353,49 +420,33 @@ std::string GeometricAttachments::tryGrasp(const GeometricState& state, const Ar
                                            std::size_t object, std::mt19937_64& rng,
                                            std::vector<GeometricStep>& steps,
                                            GeometricState& reached) {
-  motion::ToolKinematics& kinematics = tool(arm);
-  GraspSampler sampler(*world_, kinematics);
   const Pose objectPose = state.placements[world_->scene().slot(object)].pose;
-  const Stopwatch ik;
-  const std::vector<GraspCandidate> grasps =
-      sampler.sample(object, objectPose, state.robots[arm.robot].configuration, rng);
-  // The first IK solution of the sample whose pre-grasp is reachable on its branch and free.
-  const motion::MotionGroup group(*world_, state, {arm.robot});
-  std::optional<std::vector<double>> preGrasp;
-  Pose tcpAtGrasp = Pose::Identity();
-  std::string reason =
-      grasps.empty() ? "no IK solution for the grasp sample" : "no IK solution for the pre-grasp";
-  for (const GraspCandidate& grasp : grasps) {
-    tcpAtGrasp = objectPose * grasp.tcpInObject;
-    preGrasp = kinematics.solveNear(
-        tcpAtGrasp * Eigen::Translation3d(0, 0, -options_.approachDistance), grasp.configuration);
-    if (!preGrasp) continue;
-    const std::optional<std::string> problem = motion::configurationProblem(group, *preGrasp, 0);
-    if (!problem) break;
-    reason = "pre-grasp: " + *problem;
-    preGrasp.reset();
+  ApproachableGrasp grasp;
+  if (std::string reason = approachableGrasp(state, arm, object, objectPose, rng, grasp);
+      !reason.empty()) {
+    return reason;
   }
-  ++statistics_.ikCalls;
-  statistics_.ikSeconds += ik.seconds();
-  if (!preGrasp) return reason;
   options_.motion.seed = rng();
-  motion::MotionResult transit = plan(state, arm, *preGrasp);
+  motion::MotionResult transit = plan(state, arm, grasp.preGrasp);
   if (transit.status != PlannerStatus::Solved) return "transit: " + transit.message;
   GeometricState atGrasp = state;
-  atGrasp.robots[arm.robot].configuration = *preGrasp;
-  motion::MotionResult approach = line(atGrasp, arm, tcpAtGrasp);
-  if (approach.status != PlannerStatus::Solved) return "approach: " + approach.message;
-  atGrasp.robots[arm.robot].configuration = approach.path.back();
-  const Pose tcp = kinematics.tcpPose(approach.path.back());
-  const Pose objectInLink = (tcp * kinematics.tcp().inverse()).inverse() * objectPose;
+  atGrasp.robots[arm.robot].configuration = grasp.preGrasp;
+  motion::Waypoints approach;
+  Pose objectInLink = Pose::Identity();
+  if (std::string reason =
+          approachGrasp(atGrasp, arm, grasp.tcpAtGrasp, objectPose, approach, objectInLink);
+      !reason.empty()) {
+    return reason;
+  }
   world_->hold(atGrasp, arm.robot, toolLink(arm), object, objectInLink);
   options_.motion.seed = rng();
+  const Pose tcp = tool(arm).tcpPose(atGrasp.robots[arm.robot].configuration);
   motion::MotionResult lift = line(atGrasp, arm, translated(Vec3(0, 0, options_.liftHeight), tcp));
   if (lift.status != PlannerStatus::Solved) return "lift: " + lift.message;
   reached = std::move(atGrasp);
   reached.robots[arm.robot].configuration = lift.path.back();
   appendManipulation(steps, arm.robot, arm.tool, GeometricStep::Kind::Transit,
-                     std::move(transit.path), std::move(approach.path), GeometricStep::Kind::Grasp,
+                     std::move(transit.path), std::move(approach), GeometricStep::Kind::Grasp,
                      object, objectInLink, std::move(lift.path));
   return {};
 }
@@ -519,6 +570,125 @@ bool GeometricAttachments::putDown(const AttachmentArgs& args, std::span<double>
       "putDown", args, state, options_.placementSamples, writes,
       [&](std::mt19937_64& rng, std::vector<GeometricStep>& steps, GeometricState& reached) {
         return tryPlacement(state, *placing, *target, *where, rng, steps, reached);
+      });
+}
+
+Pose GeometricAttachments::handoverPose(const GeometricState& state, const Arm& giver,
+                                        const Arm& receiver, std::size_t object,
+                                        std::mt19937_64& rng) {
+  const Vec3 between =
+      0.5 * (tool(giver).chainBase(state.robots[giver.robot].configuration).translation() +
+             tool(receiver).chainBase(state.robots[receiver.robot].configuration).translation());
+  const Pose now = objectPose(*world_, state, object);
+  const auto spread = [&] { return options_.handoverSpread * (2 * uniformUnit(rng) - 1); };
+  Pose pose = Pose::Identity();
+  pose.linear() =
+      Eigen::AngleAxisd(2 * std::numbers::pi * uniformUnit(rng), Vec3::UnitZ()) * now.linear();
+  pose.translation() = Vec3(between.x() + spread(), between.y() + spread(),
+                            now.translation().z() + options_.handoverRise * uniformUnit(rng));
+  return pose;
+}
+
+// One object pose of handover: IK for the giver holding the object there (its grasp unchanged)
+// and a grasp of the receiver that it can approach (approachableGrasp) with the giver there; a
+// certified transfer path of the giver, a certified transit path of the receiver to its
+// pre-grasp, the receiver's Cartesian approach and grasp, the giver's release, and its Cartesian
+// retreat of approachDistance back along its tool's z axis.
+std::string GeometricAttachments::tryHandover(const GeometricState& state, const Arm& giver,
+                                              std::size_t object, const Arm& receiver,
+                                              std::mt19937_64& rng,
+                                              std::vector<GeometricStep>& steps,
+                                              GeometricState& reached) {
+  const RobotState& holder = state.robots[giver.robot];
+  const std::size_t index = static_cast<std::size_t>(
+      std::find(holder.heldObjects.begin(), holder.heldObjects.end(), object) -
+      holder.heldObjects.begin());
+  motion::ToolKinematics& giving = tool(giver);
+  const Pose tcpInObject = holder.held[index].inLink.inverse() * giving.tcp();
+  const Pose meeting = handoverPose(state, giver, receiver, object, rng);
+  const Stopwatch ik;
+  const std::vector<std::vector<double>> solutions =
+      giving.solutions(meeting * tcpInObject, holder.configuration);
+  ++statistics_.ikCalls;
+  statistics_.ikSeconds += ik.seconds();
+  if (solutions.empty()) return "no IK solution of the giver at the handover pose";
+  const motion::MotionGroup giverGroup(*world_, state, {giver.robot});
+  const auto free = std::find_if(solutions.begin(), solutions.end(), [&](const auto& q) {
+    return !motion::configurationProblem(giverGroup, q, 0);
+  });
+  if (free == solutions.end()) {
+    return "giver at the handover pose: " +
+           *motion::configurationProblem(giverGroup, solutions.front(), 0);
+  }
+  GeometricState atMeeting = state;
+  atMeeting.robots[giver.robot].configuration = *free;
+  ApproachableGrasp grasp;
+  if (std::string reason = approachableGrasp(atMeeting, receiver, object, meeting, rng, grasp);
+      !reason.empty()) {
+    return "receiver: " + reason;
+  }
+  options_.motion.seed = rng();
+  motion::MotionResult transfer = plan(state, giver, *free);
+  if (transfer.status != PlannerStatus::Solved) return "giver's transfer: " + transfer.message;
+  options_.motion.seed = rng();
+  motion::MotionResult transit = plan(atMeeting, receiver, grasp.preGrasp);
+  if (transit.status != PlannerStatus::Solved) return "receiver's transit: " + transit.message;
+  GeometricState atGrasp = atMeeting;
+  atGrasp.robots[receiver.robot].configuration = grasp.preGrasp;
+  motion::Waypoints approach;
+  Pose objectInLink = Pose::Identity();
+  if (std::string reason =
+          approachGrasp(atGrasp, receiver, grasp.tcpAtGrasp, meeting, approach, objectInLink);
+      !reason.empty()) {
+    return "receiver's " + reason;
+  }
+  const Pose handed = world_->release(atGrasp, giver.robot, object);
+  world_->hold(atGrasp, receiver.robot, toolLink(receiver), object, objectInLink);
+  options_.motion.seed = rng();
+  motion::MotionResult retreat =
+      line(atGrasp, giver,
+           giving.tcpPose(*free) * Eigen::Translation3d(0, 0, -options_.approachDistance));
+  if (retreat.status != PlannerStatus::Solved) return "giver's retreat: " + retreat.message;
+  reached = std::move(atGrasp);
+  reached.robots[giver.robot].configuration = retreat.path.back();
+  steps.push_back({GeometricStep::Kind::Transfer, giver.robot, giver.tool, std::move(transfer.path),
+                   0, Pose::Identity()});
+  steps.push_back({GeometricStep::Kind::Transit, receiver.robot, receiver.tool,
+                   std::move(transit.path), 0, Pose::Identity()});
+  steps.push_back({GeometricStep::Kind::Approach, receiver.robot, receiver.tool,
+                   std::move(approach), 0, Pose::Identity()});
+  steps.push_back(
+      {GeometricStep::Kind::Grasp, receiver.robot, receiver.tool, {}, object, objectInLink});
+  steps.push_back({GeometricStep::Kind::Release, giver.robot, giver.tool, {}, object, handed});
+  steps.push_back({GeometricStep::Kind::Retreat, giver.robot, giver.tool, std::move(retreat.path),
+                   0, Pose::Identity()});
+  return {};
+}
+
+// handover(robot, object, robot'): up to handoverSamples object poses (tryHandover); the first
+// that works. Afterwards robot' holds the object and robot's hand is empty.
+bool GeometricAttachments::handover(const AttachmentArgs& args, std::span<double> writes) {
+  ++statistics_.calls;
+  const GeometricState& state = stateOf(args, "handover");
+  const std::optional<Arm> giver = arm(args, 0);
+  const std::optional<std::size_t> target = object(args, 1);
+  const std::optional<Arm> receiver = arm(args, 2);
+  if (!giver || !receiver) return fail("handover", args, kNotAnArm);
+  if (!target) return fail("handover", args, kNotAMovableObject);
+  if (giver->robot == receiver->robot) {
+    return fail("handover", args, "the giver and the receiver are one robot");
+  }
+  const std::vector<std::size_t>& held = state.robots[giver->robot].heldObjects;
+  if (std::find(held.begin(), held.end(), *target) == held.end()) {
+    return fail("handover", args, "the giver does not hold the object");
+  }
+  if (!state.robots[receiver->robot].heldObjects.empty()) {
+    return fail("handover", args, "the receiver holds an object");
+  }
+  return firstSample(
+      "handover", args, state, options_.handoverSamples, writes,
+      [&](std::mt19937_64& rng, std::vector<GeometricStep>& steps, GeometricState& reached) {
+        return tryHandover(state, *giver, *target, *receiver, rng, steps, reached);
       });
 }
 

@@ -12,6 +12,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <unordered_map>
@@ -42,11 +43,19 @@ struct TampOptions {
   // Metres: an object is lifted this far (world z) after a grasp, and lowered as far to a
   // placement.
   double liftHeight = 0.05;
+  int handoverSamples = 16;  // object poses tried per handover call
+  // Metres: where handover holds the object — horizontally within handoverSpread of the midpoint
+  // of the two arms' bases, from the object's height when the call starts up to handoverRise
+  // above it.
+  double handoverSpread = 0.1;
+  double handoverRise = 0.1;
   std::uint64_t seed = 1;  // with each call's state and arguments, seeds its sampling
 };
 
 // One step of an action's geometry, in execution order: a certified joint-space motion of one
-// robot (waypoints of its whole configuration), or a gripper event.
+// robot (waypoints of its whole configuration), or a gripper event. A Grasp of an object another
+// robot holds takes it from that robot, whose Release right after it (a handover) leaves the
+// object with the new holder.
 struct GeometricStep {
   enum class Kind { Transit, Transfer, Approach, Retreat, Grasp, Release };
   Kind kind = Kind::Transit;
@@ -59,6 +68,12 @@ struct GeometricStep {
 };
 
 const char* toString(GeometricStep::Kind kind);
+
+// The robot holding scene object `object` in `state`, if one does.
+std::optional<std::size_t> holderOf(const GeometricState& state, std::size_t object);
+// Where scene object `object` is in `state`: its placement, or where the robot holding it holds
+// it.
+Pose objectPose(const World& world, const GeometricState& state, std::size_t object);
 
 // The geometry of one effect: from geometric state `from` to `to` (identifiers of the map).
 struct ActionGeometry {
@@ -96,7 +111,7 @@ class GeometricAttachments {
   // Registers every procedure under its name (procedureNames()).
   void registerProcedures(symbolic::ProcedureRegistry& registry);
   // Effects: move(robot), moveHome(robot), pickUp(robot, object), putDown(robot, object,
-  // location); checkers:
+  // location), handover(robot, object, robot); checkers:
   // isColliding(), isReachable(robot, object), isInside(object, location),
   // isOnSupportSurface(object), freeSpaceFound(object, location). A robot argument names a scene
   // robot (its first tool) or a tool.
@@ -130,6 +145,7 @@ class GeometricAttachments {
   bool moveHome(const symbolic::AttachmentArgs& args, std::span<double> writes);
   bool pickUp(const symbolic::AttachmentArgs& args, std::span<double> writes);
   bool putDown(const symbolic::AttachmentArgs& args, std::span<double> writes);
+  bool handover(const symbolic::AttachmentArgs& args, std::span<double> writes);
   bool isInside(const symbolic::AttachmentArgs& args);
   bool isOnSupportSurface(const symbolic::AttachmentArgs& args);
   bool freeSpaceFound(const symbolic::AttachmentArgs& args);
@@ -158,6 +174,24 @@ class GeometricAttachments {
   void record(const motion::MotionResult& result);
   // The link a tool is on.
   [[nodiscard]] int toolLink(const Arm& arm) const;
+  // A grasp the arm can approach: its configuration at the pre-grasp and the tool pose at the
+  // grasp.
+  struct ApproachableGrasp {
+    std::vector<double> preGrasp;
+    Pose tcpAtGrasp = Pose::Identity();
+  };
+  // One grasp sample (GraspSampler) of `object` at `objectPose` whose pre-grasp has an IK solution
+  // on the grasp's branch at which the arm collides with nothing in `state`: on success an empty
+  // string and `found`, else why not.
+  std::string approachableGrasp(const GeometricState& state, const Arm& arm, std::size_t object,
+                                const Pose& objectPose, std::mt19937_64& rng,
+                                ApproachableGrasp& found);
+  // The Cartesian approach of the arm from its configuration in `state` to `tcpAtGrasp`: on
+  // success an empty string, the path, `state` with the arm at the grasp, and where the object at
+  // `objectPose` is in the tool link frame there; else why not.
+  std::string approachGrasp(GeometricState& state, const Arm& arm, const Pose& tcpAtGrasp,
+                            const Pose& objectPose, motion::Waypoints& approach,
+                            Pose& objectInLink);
   // One grasp sample of pickUp: on success an empty string, the steps, and the state reached.
   std::string tryGrasp(const GeometricState& state, const Arm& arm, std::size_t object,
                        std::mt19937_64& rng, std::vector<GeometricStep>& steps,
@@ -167,6 +201,15 @@ class GeometricAttachments {
                            std::size_t location, std::mt19937_64& rng,
                            std::vector<GeometricStep>& steps, GeometricState& reached);
   [[nodiscard]] FreeSpaceOptions placementOptions(std::mt19937_64& rng) const;
+  // A pose of `object` for a handover between `giver` (holding it) and `receiver`: its
+  // orientation in `state` turned about the vertical at random, at a random point of the region of
+  // TampOptions::handoverSpread and handoverRise.
+  Pose handoverPose(const GeometricState& state, const Arm& giver, const Arm& receiver,
+                    std::size_t object, std::mt19937_64& rng);
+  // One object pose of handover: on success an empty string, the steps, and the state reached.
+  std::string tryHandover(const GeometricState& state, const Arm& giver, std::size_t object,
+                          const Arm& receiver, std::mt19937_64& rng,
+                          std::vector<GeometricStep>& steps, GeometricState& reached);
   [[nodiscard]] std::vector<std::size_t> facesForGrasp(std::size_t object,
                                                        const Pose& tcpInObject) const;
   // One sample of an effect: on success an empty string, the steps, and the state reached.

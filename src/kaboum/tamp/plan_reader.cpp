@@ -372,7 +372,7 @@ class Replay {
       }
       const std::string object = world_.scene().name(step.object);
       if (step.kind == GeometricStep::Kind::Release) {
-        if (!posesClose(world_.scene().pose(step.object, states[s + 1].placements), step.pose)) {
+        if (!posesClose(objectPose(world_, states[s + 1], step.object), step.pose)) {
           fail(fmt::format("{}: object '{}' is released away from where robot '{}' holds it", at,
                            object, robot.name));
         }
@@ -383,7 +383,7 @@ class Replay {
       model.model().linkPoses(states[s].robots[step.robot].configuration, links);
       const int link = states[s + 1].robots[step.robot].held.back().link;
       const Pose held = model.basePose() * links[static_cast<std::size_t>(link)] * step.pose;
-      if (!posesClose(world_.scene().pose(step.object, states[s].placements), held)) {
+      if (!posesClose(objectPose(world_, states[s], step.object), held)) {
         fail(fmt::format("{}: robot '{}' grasps object '{}' away from where it is", at, robot.name,
                          object));
       }

@@ -35,7 +35,8 @@ bool isGeometric(const Module& module) {
 std::vector<GeometricState> statesAlong(const World& world, const GeometricState& from,
                                         const ActionGeometry& action) {
   std::vector<GeometricState> states{from};
-  for (const GeometricStep& step : action.steps) {
+  for (std::size_t s = 0; s < action.steps.size(); ++s) {
+    const GeometricStep& step = action.steps[s];
     GeometricState next = states.back();
     switch (step.kind) {
       case GeometricStep::Kind::Grasp: {
@@ -44,12 +45,21 @@ std::vector<GeometricState> statesAlong(const World& world, const GeometricState
                              .collision.model()
                              .findLink(spec.tools[step.tool].link)
                              .value();
+        // The receiver of a handover takes the object from the robot holding it.
+        if (const std::optional<std::size_t> giver = holderOf(next, step.object)) {
+          world.release(next, *giver, step.object);
+        }
         world.hold(next, step.robot, link, step.object, step.pose);
         break;
       }
-      case GeometricStep::Kind::Release:
-        world.release(next, step.robot, step.object);
+      case GeometricStep::Kind::Release: {
+        // The giver of a handover opens its hand after the receiver closed its own.
+        const bool handedOver = s > 0 && action.steps[s - 1].kind == GeometricStep::Kind::Grasp &&
+                                action.steps[s - 1].object == step.object &&
+                                holderOf(states[s - 1], step.object) == step.robot;
+        if (!handedOver) world.release(next, step.robot, step.object);
         break;
+      }
       default:
         next.robots[step.robot].configuration = step.path.back();
         break;

@@ -108,7 +108,9 @@ class Solver {
 };
 
 // The states along an action's steps: before each step, and after the last (a Grasp holds the
-// object, a Release places it).
+// object, taking it from the robot holding it in a handover; a Release places it, or right after
+// a handover's Grasp leaves it with the receiver). Throws std::invalid_argument for a gripper
+// event that does not apply (a Release of an object the robot neither holds nor just handed over).
 std::vector<GeometricState> statesAlong(const World& world, const GeometricState& from,
                                         const ActionGeometry& action);
 
