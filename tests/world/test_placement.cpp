@@ -330,21 +330,29 @@ Found freeSpace(std::size_t object, const std::string& location, const FreeSpace
   return found;
 }
 
-// A found placement is inside (the original geometry too), resting on `support` and free of
-// every object and robot, by the bounded predicates and by FCL on the original geometry.
-void expectValidPlacement(const Found& found, std::size_t object, const std::string& location,
+// A found placement (`found.state` holds it) is inside location `location` (the original
+// geometry too), resting on `support` and free of every object and robot, by the bounded
+// predicates and by FCL on the original geometry.
+void expectValidPlacement(const PlacementGeometry& geometry, const verify::ReferenceGeometry& exact,
+                          const Found& found, std::size_t object, std::size_t location,
                           const Support& support) {
   ASSERT_TRUE(found.space.pose);
+  const World& world = geometry.world();
   const Pose& pose = *found.space.pose;
-  QueryScratch scratch = cell().scratch();
-  EXPECT_TRUE(placements().isInside(found.state, object, id(location)));
-  EXPECT_TRUE(originalInside(cell(), object, pose, id(location)));
-  EXPECT_EQ(placements().isOnSupportSurface(found.state, object, scratch), support);
-  const auto collision = cell().firstCollision(found.state);
-  EXPECT_FALSE(collision) << cell().describe(*collision);
-  EXPECT_EQ(exactCollision(reference(), found.state, object, pose), "");
-  const RestingFace& face = placements().restingFaces(object)[found.space.face];
+  QueryScratch scratch = world.scratch();
+  EXPECT_TRUE(geometry.isInside(found.state, object, location));
+  EXPECT_TRUE(originalInside(world, object, pose, location));
+  EXPECT_EQ(geometry.isOnSupportSurface(found.state, object, scratch), support);
+  const auto collision = world.firstCollision(found.state);
+  EXPECT_FALSE(collision) << world.describe(*collision);
+  EXPECT_EQ(exactCollision(exact, found.state, object, pose), "");
+  const RestingFace& face = geometry.restingFaces(object)[found.space.face];
   EXPECT_TRUE((pose.linear() * face.normal).isApprox(Vec3(0, 0, -1)));
+}
+
+void expectValidPlacement(const Found& found, std::size_t object, const std::string& location,
+                          const Support& support) {
+  expectValidPlacement(placements(), reference(), found, object, id(location), support);
 }
 
 TEST(FreeSpaceFound, EachStrategyFindsAPlacementInTheTray) {
@@ -473,19 +481,22 @@ TEST(FreeSpaceFound, PutsTheBearingInTheHullAreaOnTheMeshTabletop) {
 TEST(FreeSpaceFound, NothingInALocationTooSmallOrFullyOccupied) {
   for (const char* location : {"slot", "occupied"}) {
     SCOPED_TRACE(location);
+    // After the footprint, the top of the can in `occupied` is tried too (too low for box_b).
+    const std::size_t supportFaces = std::string(location) == "slot" ? 0 : 1;
     FreeSpaceOptions options;
     options.maxSamples = 200;
     for (const SearchStrategy strategy : {SearchStrategy::Quadtree, SearchStrategy::Random}) {
       options.strategy = strategy;
       const Found found = freeSpace(id("box_b"), location, options);
       EXPECT_FALSE(found.space.pose);
-      EXPECT_EQ(found.space.samples, 200U);
+      EXPECT_EQ(found.space.samples, 200U + supportFaces);
     }
     options.strategy = SearchStrategy::Linear;
     options.resolution = 0.01;
     const Found linear = freeSpace(id("box_b"), location, options);
     EXPECT_FALSE(linear.space.pose);
-    EXPECT_EQ(linear.space.samples, std::string(location) == "slot" ? 25U : 121U);  // the grid
+    EXPECT_EQ(linear.space.samples,
+              (std::string(location) == "slot" ? 25U : 121U) + supportFaces);  // the grid
   }
 }
 
@@ -500,6 +511,129 @@ TEST(FreeSpaceFound, ThrowsForAStaticObjectOrAnUnknownLocation) {
   options.resolution = 0;
   EXPECT_THROW((void)placements().freeSpaceFound(state, id("box_a"), 0, options, scratch),
                std::invalid_argument);
+}
+
+// Seed 003's MOVE AND STACK scene (examples/move-and-stack): a tray that holds the turquoise
+// bottle and the can side by side but no third object beside them.
+struct MoveAndStack {
+  World world{readSceneFile(exampleFile("move-and-stack/scene.yaml")),
+              {MeshPieces::Hulls, std::nullopt}};
+  PlacementGeometry placements{world};
+  verify::ReferenceGeometry exact{world};
+
+  [[nodiscard]] std::size_t id(const std::string& name) const {
+    return world.find(name).value().index;
+  }
+  // `state` with `object` standing upright at (x, y) on the table (top at z -0.10), turned by yaw.
+  void stand(GeometricState& state, const std::string& object, double x, double y,
+             double yaw = 0) const {
+    const CollisionShape& shape = world.description().objects[id(object)].geometry.shape;
+    state.placements[world.scene().slot(id(object))].pose =
+        at(x, y, -0.10 + shape.length / 2 + 1.6e-3, yaw);
+  }
+  // The green bottle moved to the depot, the turquoise bottle and the can in the tray 1.5 cm
+  // apart (the tray is 7 × 13 cm; the bottles 3 and 5 cm wide, the can 6 cm).
+  [[nodiscard]] GeometricState traySideBySide() const {
+    GeometricState state = world.initialState();
+    stand(state, "greenbottle", 0.47, 0.10);
+    stand(state, "turquoisebottle", 0.375, 0.168);
+    stand(state, "can", 0.375, 0.238);
+    return state;
+  }
+  [[nodiscard]] Found freeSpace(const GeometricState& state, const std::string& object,
+                                const FreeSpaceOptions& options) const {
+    QueryScratch scratch = world.scratch();
+    Found found{placements.freeSpaceFound(state, id(object), id("tray"), options, scratch), state};
+    if (found.space.pose) {
+      found.state.placements[world.scene().slot(id(object))].pose = *found.space.pose;
+    }
+    return found;
+  }
+};
+
+const MoveAndStack& moveAndStack() {
+  static const MoveAndStack scene;
+  return scene;
+}
+
+// Seed 003 Fig. 5 (G): the three objects do not fit in the tray side by side, so the small bottle
+// is put on the can — "the top of the can is semantically the same as the tabletop".
+TEST(FreeSpaceFound, StacksTheSmallBottleOnTheCanWhenTheTrayIsFullSideBySide) {
+  const MoveAndStack& scene = moveAndStack();
+  const GeometricState full = scene.traySideBySide();
+  const Support onCan{Support::Kind::Object, scene.id("can")};
+  for (const SearchStrategy strategy :
+       {SearchStrategy::Linear, SearchStrategy::Quadtree, SearchStrategy::Random}) {
+    SCOPED_TRACE(static_cast<int>(strategy));
+    FreeSpaceOptions options;
+    options.strategy = strategy;
+    const Found found = scene.freeSpace(full, "bluebottle", options);
+    expectValidPlacement(scene.placements, scene.exact, found, scene.id("bluebottle"),
+                         scene.id("tray"), onCan);
+    // Stable: the bottle's axis within the can's top (3 cm radius less the bottle's 1.5 cm).
+    const Vec3 offset =
+        found.space.pose->translation() -
+        full.placements[scene.world.scene().slot(scene.id("can"))].pose.translation();
+    EXPECT_LT(offset.head<2>().norm(), 0.015);
+    // The can's top holds one bottle; the turquoise bottle's top is too high in the tray.
+    EXPECT_FALSE(scene.freeSpace(found.state, "greenbottle", options).space.pose);
+  }
+}
+
+// The support faces come after the footprint: with the tray's centre as the only footprint position
+// (taken by the gap between the two objects), the turquoise bottle's top is tried (too high), then
+// the can's.
+TEST(FreeSpaceFound, TriesTheTopsOfTheObjectsInTheLocationAfterTheFootprint) {
+  const MoveAndStack& scene = moveAndStack();
+  FreeSpaceOptions options;
+  options.strategy = SearchStrategy::Quadtree;
+  options.maxSamples = 1;
+  const Found found = scene.freeSpace(scene.traySideBySide(), "bluebottle", options);
+  ASSERT_TRUE(found.space.pose);
+  EXPECT_EQ(found.space.support, (Support{Support::Kind::Object, scene.id("can")}));
+  EXPECT_EQ(found.space.samples, 3U);
+  // Not the centre of the can's top when the footprint has room: the tray holding the can alone.
+  GeometricState roomy = scene.world.initialState();
+  scene.stand(roomy, "greenbottle", 0.47, 0.10);
+  scene.stand(roomy, "can", 0.375, 0.238);
+  const Found beside = scene.freeSpace(roomy, "bluebottle", {});
+  ASSERT_TRUE(beside.space.pose);
+  EXPECT_EQ(beside.space.support, (Support{Support::Kind::Object, scene.id("table")}));
+}
+
+// Stable on the can: centred it rests on it; 2 cm off its axis the bottle's rim hangs over the
+// can's (3 cm radius) and some probes miss: not on a support.
+TEST(IsOnSupportSurface, ABottleOnTheCanNotOverItsRim) {
+  const MoveAndStack& scene = moveAndStack();
+  QueryScratch scratch = scene.world.scratch();
+  GeometricState state = scene.traySideBySide();
+  const Pose can = state.placements[scene.world.scene().slot(scene.id("can"))].pose;
+  const std::size_t bottle = scene.id("bluebottle");
+  Pose& pose = state.placements[scene.world.scene().slot(bottle)].pose;
+  pose = at(can.translation().x(), can.translation().y(), can.translation().z() + 0.095 + 1.6e-3);
+  EXPECT_EQ(scene.placements.isOnSupportSurface(state, bottle, scratch),
+            (Support{Support::Kind::Object, scene.id("can")}));
+  pose.translation().y() += 0.02;
+  EXPECT_FALSE(scene.placements.isOnSupportSurface(state, bottle, scratch));
+}
+
+TEST(ObjectOnTop, TheBottleOnTheCanAndNothingOnAnObjectBesideIt) {
+  const MoveAndStack& scene = moveAndStack();
+  QueryScratch scratch = scene.world.scratch();
+  const GeometricState full = scene.traySideBySide();
+  EXPECT_EQ(scene.placements.objectOnTop(full, scene.id("can")), std::nullopt);
+  EXPECT_EQ(scene.placements.objectOnTop(full, scene.id("turquoisebottle")), std::nullopt)
+      << "the can beside it does not stand on it";
+  const Found stacked = scene.freeSpace(full, "bluebottle", {});
+  ASSERT_TRUE(stacked.space.pose);
+  EXPECT_EQ(scene.placements.objectOnTop(stacked.state, scene.id("can")), scene.id("bluebottle"));
+  EXPECT_EQ(scene.placements.objectOnTop(stacked.state, scene.id("bluebottle")), std::nullopt);
+  EXPECT_EQ(scene.placements.objectOnTop(stacked.state, scene.id("table")), scene.id("greenbottle"))
+      << "the first movable object on the table";
+  GeometricState held = stacked.state;
+  scene.world.hold(held, 0, scene.world.robots()[0].collision.model().findLink("palm").value(),
+                   scene.id("can"), Pose::Identity());
+  EXPECT_EQ(scene.placements.objectOnTop(held, scene.id("can")), std::nullopt) << "held";
 }
 
 }  // namespace

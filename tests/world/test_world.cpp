@@ -253,6 +253,38 @@ TEST(World, TwoObjectsStartingInCollisionAreNamed) {
   EXPECT_NEAR(millimetres, 50.0, 0.15) << error;
 }
 
+// A stack written touching (each block's bottom on the top below) loads: the lowest block is
+// raised off the table first, then each one off the block under it, every one left resting on it.
+TEST(World, AStackWrittenTouchingRisesAsAWhole) {
+  std::string objects =
+      "  - name: table\n"
+      "    geometry: {box: {size: [0.5, 1.0, 0.04]}}\n"
+      "    pose: {position: [0.55, 0, 0.70]}\n";
+  // Listed top first, so that the order of the file is not the order of the stack.
+  for (int level = 2; level >= 0; --level) {
+    objects += "  - name: block" + std::to_string(level) +
+               "\n"
+               "    geometry: {box: {size: [0.06, 0.06, 0.04]}}\n"
+               "    pose: {position: [0.55, 0, " +
+               std::to_string(0.74 + 0.04 * level) +
+               "]}\n"
+               "    movable: true\n";
+  }
+  const World world(twoArmsWith(objects), {MeshPieces::Hulls, std::nullopt});
+  const PlacementGeometry placements(world);
+  QueryScratch scratch = world.scratch();
+  const GeometricState state = world.initialState();
+  EXPECT_FALSE(world.firstCollision(state));
+  const std::vector<std::string> below{"table", "block0", "block1"};
+  for (int level = 0; level < 3; ++level) {
+    const std::size_t block = objectId(world, "block" + std::to_string(level));
+    EXPECT_GT(world.restingLift()[block], 0) << level;
+    const std::optional<Support> support = placements.isOnSupportSurface(state, block, scratch);
+    ASSERT_TRUE(support) << level;
+    EXPECT_EQ(support->index, objectId(world, below[static_cast<std::size_t>(level)])) << level;
+  }
+}
+
 TEST(World, ARobotCollidingAtHomeIsNamed) {
   const std::string error =
       loadError(twoArmsWith("  - name: pillar\n"

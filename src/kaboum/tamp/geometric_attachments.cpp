@@ -96,6 +96,7 @@ namespace {
 constexpr std::string_view kNotAnArm = "not a robot with a tool nor a tool of the scene";
 constexpr std::string_view kNotAMovableObject = "not a movable object of the scene";
 constexpr std::string_view kNotALocation = "not a location of the scene";
+constexpr std::string_view kNoFreePlacement = "no free placement in the location";
 
 // Each procedure: its name, its number of arguments (robots, objects, locations by name), and
 // whether it is an effect (else a condition checker).
@@ -451,7 +452,8 @@ std::string GeometricAttachments::tryGrasp(const GeometricState& state, const Ar
   return {};
 }
 
-// pickUp(robot, object): up to graspSamples grasp samples (tryGrasp); the first that works.
+// pickUp(robot, object): up to graspSamples grasp samples (tryGrasp); the first that works. An
+// object another one stands on is not picked (the one on top would fall): the call fails at once.
 bool GeometricAttachments::pickUp(const AttachmentArgs& args, std::span<double> writes) {
   ++statistics_.calls;
   const GeometricState& state = stateOf(args, "pickUp");
@@ -461,6 +463,9 @@ bool GeometricAttachments::pickUp(const AttachmentArgs& args, std::span<double> 
   if (!target) return fail("pickUp", args, kNotAMovableObject);
   if (!state.placements[world_->scene().slot(*target)].present) {
     return fail("pickUp", args, "the object is held");
+  }
+  if (const std::optional<std::size_t> above = placements_.objectOnTop(state, *target)) {
+    return fail("pickUp", args, "'" + world_->scene().name(*above) + "' stands on the object");
   }
   if (!state.robots[picking->robot].heldObjects.empty()) {
     return fail("pickUp", args, "the robot holds an object");
@@ -515,7 +520,7 @@ std::string GeometricAttachments::tryPlacement(const GeometricState& state, cons
   options.faces = facesForGrasp(object, tcpInObject);
   if (options.faces.empty()) return "no resting face leaves the grasp reachable from above";
   const FreeSpace found = placements_.freeSpaceFound(state, object, location, options, scratch_);
-  if (!found.pose) return "no free placement in the location";
+  if (!found.pose) return std::string(kNoFreePlacement);
   const Pose tcpAtPlace = *found.pose * tcpInObject;
   const Stopwatch ik;
   std::vector<std::vector<double>> above = kinematics.solutions(
@@ -552,7 +557,7 @@ std::string GeometricAttachments::tryPlacement(const GeometricState& state, cons
 }
 
 // putDown(robot, object, location): up to placementSamples placements (tryPlacement); the first
-// that works.
+// that works. When freeSpaceFound finds no placement at all, the location is full: no more samples.
 bool GeometricAttachments::putDown(const AttachmentArgs& args, std::span<double> writes) {
   ++statistics_.calls;
   const GeometricState& state = stateOf(args, "putDown");
@@ -566,10 +571,14 @@ bool GeometricAttachments::putDown(const AttachmentArgs& args, std::span<double>
   if (std::find(held.begin(), held.end(), *target) == held.end()) {
     return fail("putDown", args, "the robot does not hold the object");
   }
+  bool full = false;
   return firstSample(
       "putDown", args, state, options_.placementSamples, writes,
       [&](std::mt19937_64& rng, std::vector<GeometricStep>& steps, GeometricState& reached) {
-        return tryPlacement(state, *placing, *target, *where, rng, steps, reached);
+        if (full) return std::string(kNoFreePlacement);
+        std::string reason = tryPlacement(state, *placing, *target, *where, rng, steps, reached);
+        full = reason == kNoFreePlacement;
+        return reason;
       });
 }
 

@@ -20,6 +20,9 @@ namespace {
 // The resolution (metres) of the bisection that finds the lowest free height of a placement.
 constexpr double kBisectionStep = 1e-4;
 
+// A hull facet whose world normal has at least this z faces up: a support face (within 1°).
+const double kUpwardFacet = std::cos(std::numbers::pi / 180);
+
 const Vec3 kUp{0, 0, 1};
 
 // The parameters t where origin + t·direction lies in every half-space n·x <= offset, as
@@ -96,6 +99,36 @@ Vec3 solidCentroid(const TriangleMesh& mesh) {
   return weighted / volume;
 }
 
+// One facet of a convex hull: its plane, area and centroid, and its triangles' directed edges.
+struct Facet {
+  HullPlane plane;
+  double area = 0;
+  Vec3 centroid{0, 0, 0};
+  std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
+};
+
+// The facets of `hull`, one per plane: the triangles whose normal is the plane's.
+std::vector<Facet> hullFacets(const ConvexHull& hull) {
+  std::vector<Facet> facets;
+  for (const HullPlane& plane : hull.planes) {
+    Facet& facet = facets.emplace_back();
+    facet.plane = plane;
+    Vec3 weighted = Vec3::Zero();
+    for (const Triangle& t : hull.mesh.triangles) {
+      const Vec3& a = hull.mesh.vertices[t[0]];
+      const Vec3& b = hull.mesh.vertices[t[1]];
+      const Vec3& c = hull.mesh.vertices[t[2]];
+      const Vec3 cross = (b - a).cross(c - a);
+      if (cross.norm() == 0 || cross.normalized().dot(plane.normal) < 1 - 1e-9) continue;
+      facet.area += 0.5 * cross.norm();
+      weighted += 0.5 * cross.norm() * (a + b + c) / 3;
+      for (int k = 0; k < 3; ++k) facet.edges.emplace(t[k], t[(k + 1) % 3]);
+    }
+    if (facet.area > 0) facet.centroid = weighted / facet.area;
+  }
+  return facets;
+}
+
 // A hull facet whose outward normal, turned to −z, rests the hull's centroid strictly inside it.
 struct StableFacet {
   Vec3 normal;
@@ -108,27 +141,18 @@ std::vector<StableFacet> stableFacets(std::span<const Vec3> points, const std::s
   const Vec3 centroid = solidCentroid(hull.mesh);
   const double size = (hull.mesh.vertices.front() - centroid).norm();
   std::vector<StableFacet> stable;
-  for (const HullPlane& plane : hull.planes) {
-    // The facet's triangles, and its boundary: their directed edges whose reverse is not one.
-    std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
-    double area = 0;
-    for (const Triangle& t : hull.mesh.triangles) {
-      const Vec3& a = hull.mesh.vertices[t[0]];
-      const Vec3 cross = (hull.mesh.vertices[t[1]] - a).cross(hull.mesh.vertices[t[2]] - a);
-      if (cross.norm() == 0 || cross.normalized().dot(plane.normal) < 1 - 1e-9) continue;
-      area += 0.5 * cross.norm();
-      for (int k = 0; k < 3; ++k) edges.emplace(t[k], t[(k + 1) % 3]);
-    }
+  for (const Facet& facet : hullFacets(hull)) {
+    const HullPlane& plane = facet.plane;
     const Vec3 foot = centroid - (plane.normal.dot(centroid) - plane.offset) * plane.normal;
     bool inside = true;
-    for (const auto& [from, to] : edges) {
-      if (edges.contains({to, from})) continue;
+    for (const auto& [from, to] : facet.edges) {
+      if (facet.edges.contains({to, from})) continue;  // inside the facet, not on its boundary
       const Vec3& a = hull.mesh.vertices[from];
       const Vec3& b = hull.mesh.vertices[to];
       // Outward triangles turn counter-clockwise about the normal: the inside is to the left.
       inside = inside && (b - a).cross(foot - a).dot(plane.normal) > 1e-9 * size * size;
     }
-    if (inside) stable.push_back({plane.normal, area});
+    if (inside) stable.push_back({plane.normal, facet.area});
   }
   std::stable_sort(stable.begin(), stable.end(),
                    [](const StableFacet& a, const StableFacet& b) { return a.area > b.area; });
@@ -164,6 +188,7 @@ RestingFace restingFace(const CollisionBody& body, const Vec3& normal, double ba
     const Vec3 turned = face.down * v + Vec3(0, 0, face.height);
     if (turned.z() <= band) face.bottom.push_back(turned);
   }
+  for (const Vec3& b : face.bottom) face.centre += b / static_cast<double>(face.bottom.size());
   return face;
 }
 
@@ -264,6 +289,10 @@ PlacementGeometry::PlacementGeometry(const World& world) : world_(world) {
     for (std::size_t p = 0; p < body.pieceCount(); ++p) {
       object.piecePlanes.push_back(
           convexHull(body.piece(p).vertices(), "object " + scene.name(o)).planes);
+    }
+    for (const Facet& facet :
+         hullFacets(convexHull(pieceVertices(body), "object " + scene.name(o)))) {
+      object.facets.push_back({facet.plane.normal, facet.centroid});
     }
     if (!scene.movable(o)) continue;
     for (const Vec3& normal : restingNormals(world.description().objects[o], body)) {
@@ -446,11 +475,9 @@ FreeSpace PlacementGeometry::freeSpaceFound(const GeometricState& state, std::si
     return posed(above + gap);
   };
   FreeSpace result;
-  for (; result.samples < options.maxSamples; ++result.samples) {
-    const auto sample = sampler.next(result.samples);
-    if (!sample) break;
-    const Vec3 position =
-        where.frame * Vec3(where.lower.x() + (*sample)[0], where.lower.y() + (*sample)[1], 0);
+  // Every resting face and yaw at one position: the object frame over `position`, or with
+  // `centred` the face's centre; true when one of them is a placement (in `result`).
+  const auto placeAt = [&](const Vec3& position, double yawOffset, bool centred) {
     const std::size_t faceCount = options.faces.empty() ? faces.size() : options.faces.size();
     for (std::size_t i = 0; i < faceCount; ++i) {
       const std::size_t f = options.faces.empty() ? i : options.faces[i];
@@ -460,24 +487,81 @@ FreeSpace PlacementGeometry::freeSpaceFound(const GeometricState& state, std::si
       }
       for (std::size_t k = 0; k < options.yawCount; ++k) {
         const double yaw =
-            frameYaw + (*sample)[2] +
+            frameYaw + yawOffset +
             2 * std::numbers::pi * static_cast<double>(k) / static_cast<double>(options.yawCount);
         const Eigen::Matrix2d turn = Eigen::Rotation2Dd(yaw).toRotationMatrix();
-        const std::optional<double> plane = restingPlane(faces[f], position, turn);
+        Vec3 origin = position;
+        if (centred) origin.head<2>() -= turn * faces[f].centre.head<2>();
+        const std::optional<double> plane = restingPlane(faces[f], origin, turn);
         if (!plane) continue;
-        const std::optional<Pose> pose = settled(faces[f], position, yaw, *plane);
+        const std::optional<Pose> pose = settled(faces[f], origin, yaw, *plane);
         if (!pose || !isInside(object, *pose, location)) continue;
         if (const auto support = supportAt(state, scratch, object, *pose)) {
           result.pose = *pose;
           result.support = *support;
           result.face = f;
-          ++result.samples;
-          return result;
+          return true;
         }
       }
     }
+    return false;
+  };
+  for (; result.samples < options.maxSamples; ++result.samples) {
+    const auto sample = sampler.next(result.samples);
+    if (!sample) break;
+    const Vec3 position =
+        where.frame * Vec3(where.lower.x() + (*sample)[0], where.lower.y() + (*sample)[1], 0);
+    if (placeAt(position, (*sample)[2], false)) {
+      ++result.samples;
+      return result;
+    }
+  }
+  // The support faces of the objects standing in the location: facets of their hulls facing up
+  // whose centroid lies in the region's column (the top of a can, of a block).
+  const double drop = supportTolerance(object).drop;
+  for (std::size_t other = 0; other < objects_.size(); ++other) {
+    const std::optional<Pose> pose = other == object ? std::nullopt : poseIn(state, other);
+    if (!pose) continue;
+    for (const HullFacet& facet : objects_[other].facets) {
+      if ((pose->linear() * facet.normal).z() < kUpwardFacet) continue;
+      const Vec3 centre = *pose * facet.centroid;
+      const auto column =
+          verticalInterval(where.region.planes(), Pose::Identity(), centre.x(), centre.y());
+      if (!column || centre.z() < column->first - drop || centre.z() > column->second) continue;
+      ++result.samples;
+      if (placeAt(centre, 0, true)) return result;
+    }
   }
   return result;
+}
+
+std::optional<std::size_t> PlacementGeometry::objectOnTop(const GeometricState& state,
+                                                          std::size_t object) const {
+  const std::optional<Pose> below = poseIn(state, object);
+  if (!below) return std::nullopt;
+  const CollisionScene& scene = world_.scene();
+  const CollisionBody& base = scene.body(object);
+  const Vec3 baseCentre = *below * base.bounds().centre;
+  for (std::size_t other = 0; other < scene.size(); ++other) {
+    if (other == object || !scene.movable(other)) continue;
+    const std::optional<Pose> pose = poseIn(state, other);
+    if (!pose) continue;
+    const CollisionBody& body = scene.body(other);
+    const SupportTolerance tolerance = supportTolerance(other);
+    if (!spheresWithin(*pose * body.bounds().centre, body.bounds().radius, baseCentre,
+                       base.bounds().radius, tolerance.drop)) {
+      continue;
+    }
+    bool touches = false;
+    allBottomProbes(body, *pose, tolerance.drop, tolerance.band, [&](const SegmentSupport& probe) {
+      for (std::size_t p = 0; p < base.pieceCount() && !touches; ++p) {
+        touches = intersects(probe, TransformedSupport(base.piece(p), *below));
+      }
+      return !touches;
+    });
+    if (touches) return other;
+  }
+  return std::nullopt;
 }
 
 }  // namespace kaboum::world

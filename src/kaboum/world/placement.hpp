@@ -35,13 +35,15 @@ struct SupportTolerance {
 
 // A face an object may rest on (seed 003 §III-B, the scene file's resting_faces): its outward unit
 // normal in the object frame, the orientation that turns it to −z, the height of the object frame
-// above the plane its pieces then touch, and the bottom vertices of its pieces in that orientation
-// (within the support band of the lowest, frame origin at height 0 above them: z in [0, band]).
+// above the plane its pieces then touch, the bottom vertices of its pieces in that orientation
+// (within the support band of the lowest, frame origin at height 0 above them: z in [0, band]) and
+// their mean (the face's centre, what freeSpaceFound puts over the centre of a support face).
 struct RestingFace {
   Vec3 normal{0, 0, -1};
   Eigen::Quaterniond down = Eigen::Quaterniond::Identity();
   double height = 0;
   std::vector<Vec3> bottom;
+  Vec3 centre{0, 0, 0};
 };
 
 // The object pose that puts `face` down on the horizontal plane at height `planeZ` (its pieces'
@@ -132,17 +134,25 @@ class PlacementGeometry {
                                                           QueryScratch& scratch) const;
 
   // Seed 003's freeSpaceFound(object, location), the suggester: samples (x, y) positions over the
-  // location's footprint by `options.strategy`; at each, for every resting face and yaw, a
-  // downward raycast from the region's top under the face's bottom vertices onto the supports
-  // (present objects' pieces, support-surface locations' bottoms) gives the height, the pieces
-  // the World's resting gap above the highest support hit; the first pose that is inside the
-  // location (isInside), collision-free against every other object and every robot (the object's
-  // own placement or hold in `state` ignored) and on a support (isOnSupportSurface) is returned.
-  // Never a colliding placement; deterministic for the options. Throws std::invalid_argument for a
-  // static object or a location out of range.
+  // location's footprint by `options.strategy`, then (when those give nothing) the centres of the
+  // upward horizontal faces of the objects standing in the location (the top of a can: stacking,
+  // seed 003 §IV); at each, for every resting face and yaw, a downward raycast from the region's
+  // top under the face's bottom vertices onto the supports (present objects' pieces,
+  // support-surface locations' bottoms) gives the height, the pieces the World's resting gap above
+  // the highest support hit; the first pose that is inside the location (isInside), collision-free
+  // against every other object and every robot (the object's own placement or hold in `state`
+  // ignored) and on a support (isOnSupportSurface) is returned. Never a colliding placement;
+  // deterministic for the options. Throws std::invalid_argument for a static object or a location
+  // out of range.
   [[nodiscard]] FreeSpace freeSpaceFound(const GeometricState& state, std::size_t object,
                                          std::size_t location, const FreeSpaceOptions& options,
                                          QueryScratch& scratch) const;
+
+  // The first present movable object (in id order) standing on `object` in `state`: one of its
+  // supportTolerance() probes touches `object`'s pieces. Nullopt when none does, or when `object`
+  // is held. What a pick must not take away from under another object.
+  [[nodiscard]] std::optional<std::size_t> objectOnTop(const GeometricState& state,
+                                                       std::size_t object) const;
 
  private:
   struct LocationGeometry {
@@ -154,9 +164,16 @@ class PlacementGeometry {
     double bottom = 0;
     bool supportSurface = false;
   };
+  // A facet of the convex hull of an object's pieces, in the object frame: its outward unit
+  // normal and its centroid. Those facing up where the object stands are its support faces.
+  struct HullFacet {
+    Vec3 normal{0, 0, 1};
+    Vec3 centroid{0, 0, 0};
+  };
   struct ObjectGeometry {
     std::vector<std::vector<HullPlane>> piecePlanes;  // per piece, in the object frame
     std::vector<RestingFace> faces;
+    std::vector<HullFacet> facets;
   };
 
   // The object's pose in `state`: its placement, or a static object's pose; nullopt when held.

@@ -280,6 +280,22 @@ double verticalOverlap(const CollisionBody& a, const Pose& poseA, const Collisio
 // The smallest lift tried when a movable object rests on another (metres); lifts double from here.
 constexpr double kFirstLift = 1e-4;
 
+// The movable objects of `scene` by the lowest world z of their bounds at `placements` (ties in
+// object order).
+std::vector<std::size_t> movableBottomUp(const CollisionScene& scene,
+                                         std::span<const Placement> placements) {
+  std::vector<std::pair<double, std::size_t>> bottoms;
+  for (std::size_t o = 0; o < scene.size(); ++o) {
+    if (!scene.movable(o)) continue;
+    bottoms.emplace_back(
+        transformedAabb(scene.body(o).bounds().box, scene.pose(o, placements)).lo.z(), o);
+  }
+  std::sort(bottoms.begin(), bottoms.end());
+  std::vector<std::size_t> order;
+  for (const auto& entry : bottoms) order.push_back(entry.second);
+  return order;
+}
+
 }  // namespace
 
 World::World(SceneDescription scene, const WorldOptions& options) : description_(std::move(scene)) {
@@ -371,11 +387,16 @@ World::World(SceneDescription scene, const WorldOptions& options) : description_
 
   // Movable objects start free, raised off what they rest on when touching is all that collides,
   // and further up to the resting gap (restingGap()), so that certified motions can leave them.
+  // Lowest first, each against the fixed obstacles and the objects placed before it, so that an
+  // object stacked on another is raised off it once that one has moved (a collision between two
+  // objects is found when the higher one is placed).
   initialPlacements_ = scene_.initialState();
   restingLift_.assign(objects.size(), 0.0);
   const double gap = restingGap();
-  for (std::size_t o = 0; o < objects.size(); ++o) {
-    if (!objects[o].movable) continue;
+  const std::vector<std::size_t> bottomUp = movableBottomUp(scene_, initialPlacements_);
+  for (const std::size_t o : bottomUp) initialPlacements_[scene_.slot(o)].present = false;
+  for (const std::size_t o : bottomUp) {
+    initialPlacements_[scene_.slot(o)].present = true;
     Pose& pose = initialPlacements_[scene_.slot(o)].pose;
     const std::optional<std::size_t> near =
         scene_.firstCollision(initialPlacements_, scene_.body(o), pose, gap, o);
@@ -384,13 +405,15 @@ World::World(SceneDescription scene, const WorldOptions& options) : description_
         scene_.firstCollision(initialPlacements_, scene_.body(o), pose, 0.0, o);
     const double largestLift =
         allowance(objectEpsilon_[o]) + allowance(objectEpsilon_[*near]) + 2 * gap + kFirstLift;
+    // On a movable object already raised: that object's lift first (a stack rises as a whole).
+    const double below = objects[*near].movable ? restingLift_[*near] : 0.0;
     const Pose written = pose;
     for (double lift = kFirstLift; lift <= largestLift && restingLift_[o] == 0; lift *= 2) {
       Pose raised = written;
-      raised.translation().z() += lift;
+      raised.translation().z() += below + lift;
       if (!scene_.firstCollision(initialPlacements_, scene_.body(o), raised, gap, o)) {
         pose = raised;
-        restingLift_[o] = lift;
+        restingLift_[o] = below + lift;
       }
     }
     if (!hit) continue;  // near but free: raised when that frees it, else left where it is

@@ -120,7 +120,8 @@ class World {
  public:
   // Builds the geometry of `scene`. Movable objects resting on another object (touching it, free
   // once raised by at most the two bodies' bounding error, or nearer to it than restingGap()) are
-  // raised until they are restingGap() clear of it, as placements are (isOnSupportSurface). Throws
+  // raised until they are restingGap() clear of it, as placements are (isOnSupportSurface), the
+  // lowest first so that a stack written touching rises as a whole. Throws
   // InputError with one line naming the entry (SourceLocation::message) when two objects start in
   // collision or a robot at home collides with an object or another robot.
   explicit World(SceneDescription scene, const WorldOptions& options = {});
