@@ -427,9 +427,9 @@ std::string GeometricAttachments::tryGrasp(const GeometricState& state, const Ar
       !reason.empty()) {
     return reason;
   }
-  options_.motion.seed = rng();
-  motion::MotionResult transit = plan(state, arm, grasp.preGrasp);
-  if (transit.status != PlannerStatus::Solved) return "transit: " + transit.message;
+  // The approach and the lift start where the transit ends: checked first, since a grasp that
+  // another object blocks fails there, before the costlier transit is planned.
+  const std::uint64_t transitSeed = rng();
   GeometricState atGrasp = state;
   atGrasp.robots[arm.robot].configuration = grasp.preGrasp;
   motion::Waypoints approach;
@@ -440,10 +440,12 @@ std::string GeometricAttachments::tryGrasp(const GeometricState& state, const Ar
     return reason;
   }
   world_->hold(atGrasp, arm.robot, toolLink(arm), object, objectInLink);
-  options_.motion.seed = rng();
   const Pose tcp = tool(arm).tcpPose(atGrasp.robots[arm.robot].configuration);
   motion::MotionResult lift = line(atGrasp, arm, translated(Vec3(0, 0, options_.liftHeight), tcp));
   if (lift.status != PlannerStatus::Solved) return "lift: " + lift.message;
+  options_.motion.seed = transitSeed;
+  motion::MotionResult transit = plan(state, arm, grasp.preGrasp);
+  if (transit.status != PlannerStatus::Solved) return "transit: " + transit.message;
   reached = std::move(atGrasp);
   reached.robots[arm.robot].configuration = lift.path.back();
   appendManipulation(steps, arm.robot, arm.tool, GeometricStep::Kind::Transit,
@@ -535,9 +537,9 @@ std::string GeometricAttachments::tryPlacement(const GeometricState& state, cons
   if (free == above.end()) {
     return "above the placement: " + *motion::configurationProblem(group, above.front(), 0);
   }
-  options_.motion.seed = rng();
-  motion::MotionResult transfer = plan(state, arm, *free);
-  if (transfer.status != PlannerStatus::Solved) return "transfer: " + transfer.message;
+  // The descent, the release and the retreat start where the transfer ends: checked first, since
+  // they fail more often and cost less.
+  const std::uint64_t transferSeed = rng();
   GeometricState atPlace = state;
   atPlace.robots[arm.robot].configuration = *free;
   motion::MotionResult descent = line(atPlace, arm, tcpAtPlace);
@@ -548,6 +550,9 @@ std::string GeometricAttachments::tryPlacement(const GeometricState& state, cons
                                       kinematics.tcpPose(descent.path.back()) *
                                           Eigen::Translation3d(0, 0, -options_.approachDistance));
   if (retreat.status != PlannerStatus::Solved) return "retreat: " + retreat.message;
+  options_.motion.seed = transferSeed;
+  motion::MotionResult transfer = plan(state, arm, *free);
+  if (transfer.status != PlannerStatus::Solved) return "transfer: " + transfer.message;
   reached = std::move(atPlace);
   reached.robots[arm.robot].configuration = retreat.path.back();
   appendManipulation(steps, arm.robot, arm.tool, GeometricStep::Kind::Transfer,
