@@ -464,6 +464,29 @@ TEST(CartesianMotion, FollowsTheToolLineWithinTheDeviation) {
   expectCertified(group, result);
 }
 
+// A pose reached by numeric IK from two different starts gives the same configuration, to the
+// bit: the closed form's solution replaces the numeric one, so that equal geometric states of the
+// planner compare equal whatever led to them.
+TEST(ToolKinematics, SolveNearGivesTheClosedFormsSolutionFromAnyStart) {
+  const World& world = kr5World();
+  ToolKinematics tool(world, 0, 0);
+  std::vector<double> home = world.initialState().robots[0].configuration;
+  home[2] = -0.4;  // away from the wrist singularity of home (its wrist pitch 0)
+  home[4] = 0.7;
+  const Pose target = tool.tcpPose(home);
+  std::vector<double> first = home, second = home;
+  first[1] += 0.02;
+  second[3] -= 0.03;
+  second[5] += 0.02;
+  const std::optional<std::vector<double>> a = tool.solveNear(target, first);
+  const std::optional<std::vector<double>> b = tool.solveNear(target, second);
+  ASSERT_TRUE(a && b);
+  EXPECT_EQ(*a, *b);
+  const std::vector<std::vector<double>> exact = tool.solutions(target, home);
+  EXPECT_NE(std::find(exact.begin(), exact.end(), *a), exact.end())
+      << "one of the closed form's solutions";
+}
+
 TEST(CartesianMotion, ALineThroughAnObstacleIsRejectedNamingIt) {
   const World& world = kr5World();
   const MotionGroup group = groupOf(world, {"kr5"});

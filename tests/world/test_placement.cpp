@@ -636,6 +636,49 @@ TEST(ObjectOnTop, TheBottleOnTheCanAndNothingOnAnObjectBesideIt) {
   EXPECT_EQ(scene.placements.objectOnTop(held, scene.id("can")), std::nullopt) << "held";
 }
 
+// Equal blocks stacked flush (the Stacked n Objects scenario): the probes from the upper block's
+// corners run down the lower block's edges and still rest on it, and freeSpaceFound puts a third
+// equal block flat on the stack (not on its side, which the edge used to leave as the only face).
+TEST(FreeSpaceFound, StacksEqualBlocksFlush) {
+  std::string text =
+      "settings: {epsilon: 0.002}\n"
+      "objects:\n"
+      "  - {name: stand, geometry: {box: {size: [0.06, 0.06, 0.10]}}, pose: {position: [0.3, 0, "
+      "0.05]}}\n";
+  for (int level = 0; level < 3; ++level) {
+    text += "  - {name: block" + std::to_string(level) +
+            ", movable: true, geometry: {box: {size: [0.04, 0.04, 0.012]}}, pose: {position: [0.3, "
+            "0, " +
+            std::to_string(0.106 + 0.012 * level) + "]}}\n";
+  }
+  text +=
+      "locations:\n"
+      "  - {name: stack, region: {box: {min: [0.27, -0.03, 0.10], max: [0.33, 0.03, 0.20]}}}\n";
+  const World world(parseSceneText(text, "stack.yaml", "."), {MeshPieces::Hulls, std::nullopt});
+  const PlacementGeometry geometry(world);
+  QueryScratch scratch = world.scratch();
+  const auto block = [&](int level) {
+    return world.find("block" + std::to_string(level)).value().index;
+  };
+  GeometricState state = world.initialState();
+  EXPECT_EQ(geometry.isOnSupportSurface(state, block(1), scratch),
+            (Support{Support::Kind::Object, block(0)}));
+  EXPECT_EQ(geometry.objectOnTop(state, block(1)), block(2));
+  // block2 taken off and put back by freeSpaceFound, flat (its bottom face only) and aligned.
+  state.placements[world.scene().slot(block(2))].present = false;
+  const std::span<const RestingFace> faces = geometry.restingFaces(block(2));
+  FreeSpaceOptions options;
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    if (faces[f].normal.isApprox(Vec3(0, 0, -1))) options.faces = {f};
+  }
+  ASSERT_EQ(options.faces.size(), 1U);
+  const FreeSpace found =
+      geometry.freeSpaceFound(state, block(2), world.find("stack").value().index, options, scratch);
+  ASSERT_TRUE(found.pose);
+  EXPECT_EQ(found.support, (Support{Support::Kind::Object, block(1)}));
+  EXPECT_EQ(found.samples, 1U) << "the location's centre, over the stack";
+}
+
 }  // namespace
 
 }  // namespace kaboum::world

@@ -78,14 +78,17 @@ bool allBottomProbes(const CollisionBody& body, const Pose& pose, double drop, d
 }
 
 // Whether the probe `segment` (a downward one of allBottomProbes) touches a piece of an object
-// present in `state` other than `ignore`; which one, the first the broad phase finds.
+// present in `state` other than `ignore`, or comes within `margin` of one (a probe from the corner
+// of a block stacked flush on an equal one runs down the lower block's edge); which one, the first
+// the broad phase finds.
 inline std::optional<std::size_t> probeTouches(const CollisionScene& scene,
                                                std::span<const Placement> state,
                                                const SegmentSupport& segment,
-                                               std::optional<std::size_t> ignore) {
+                                               std::optional<std::size_t> ignore,
+                                               double margin = 0.0) {
   const Aabb box{segment.a.cwiseMin(segment.b), segment.a.cwiseMax(segment.b)};
   return scene.firstWithin(state, segment, box, segment.center(),
-                           0.5 * (segment.a - segment.b).norm(), 0.0, ignore);
+                           0.5 * (segment.a - segment.b).norm(), margin, ignore);
 }
 
 }  // namespace kaboum::collision

@@ -82,6 +82,32 @@ std::vector<double> ToolKinematics::withChainValues(std::span<const double> q,
   return full;
 }
 
+void ToolKinematics::snapToClosedForm(const Pose& tip) {
+  // Radians (metres for a prismatic joint): above what the numeric solver's pose tolerance leaves
+  // in the joints, below the distance between two branches of the closed form away from
+  // singularities; a step a Cartesian motion's certification covers like any other.
+  constexpr double kSnap = 1e-3;
+  ArmIk::Solutions solved;
+  closedForm_->solve(tip, solved);
+  double nearest = kSnap;
+  int chosen = -1;
+  for (int s = 0; s < solved.count; ++s) {
+    const ArmIk::Solution& q = solved.q[static_cast<std::size_t>(s)];
+    double distance = 0;
+    for (std::size_t i = 0; i < variables_.size(); ++i) {
+      distance = std::max(distance, std::abs(q[i] - chainSolution_[i]));
+    }
+    if (distance <= nearest) {
+      nearest = distance;
+      chosen = s;
+    }
+  }
+  if (chosen >= 0) {
+    std::copy_n(solved.q[static_cast<std::size_t>(chosen)].begin(), variables_.size(),
+                chainSolution_.begin());
+  }
+}
+
 std::optional<std::vector<double>> ToolKinematics::solveNear(const Pose& tcp,
                                                              std::span<const double> near) {
   // Damped least squares from `near` first: it follows the arm continuously, also through wrist
@@ -91,6 +117,7 @@ std::optional<std::vector<double>> ToolKinematics::solveNear(const Pose& tcp,
     chainQ_[i] = near[static_cast<std::size_t>(variables_[i])];
   }
   if (tracking_->solve(target, chainQ_, chainSolution_)) {
+    if (closedForm_) snapToClosedForm(target);
     return withChainValues(near, chainSolution_);
   }
   std::vector<std::vector<double>> all = solutions(tcp, near);

@@ -30,8 +30,10 @@ class ToolKinematics {
   // The tool centre point in the world frame at robot configuration q.
   [[nodiscard]] Pose tcpPose(std::span<const double> q);
   // A configuration reaching `tcp` near `near`: numeric IK started at `near` (continuity along a
-  // Cartesian motion, through wrist singularities too), else the nearest of solutions(), else
-  // nullopt.
+  // Cartesian motion, through wrist singularities too) — replaced by the closed form's solution
+  // when one lies within 1e-3 of it, so that a pose reached from different starts gives the same
+  // configuration (equal geometric states compare equal) —, else the nearest of solutions(),
+  // else nullopt.
   [[nodiscard]] std::optional<std::vector<double>> solveNear(const Pose& tcp,
                                                              std::span<const double> near);
   // Every configuration reaching `tcp` the solver finds (the closed form's distinct solutions, or
@@ -52,6 +54,9 @@ class ToolKinematics {
  private:
   // The target of the chain's tip in its base frame, at configuration q (its base link may move).
   [[nodiscard]] Pose tipTarget(const Pose& tcp, std::span<const double> q);
+  // Replaces chainSolution_ (numeric IK for the chain tip at `tip`) by the closed form's solution
+  // within a rounding distance of it, if there is one.
+  void snapToClosedForm(const Pose& tip);
 
   const World* world_;
   std::size_t robot_;

@@ -20,10 +20,18 @@ namespace {
 // The resolution (metres) of the bisection that finds the lowest free height of a placement.
 constexpr double kBisectionStep = 1e-4;
 
+// How far (metres) a support probe may pass beside a piece and still rest on it: the probes from
+// the corners of a block stacked flush on an equal block run down the edges of the lower one.
+constexpr double kProbeMargin = 1e-5;
+
 // A hull facet whose world normal has at least this z faces up: a support face (within 1°).
 const double kUpwardFacet = std::cos(std::numbers::pi / 180);
 
 const Vec3 kUp{0, 0, 1};
+
+// Metres: a line parallel to a facet plane this close to it lies on it (a raycast down the edge of
+// a block's side).
+constexpr double kOnPlane = 1e-9;
 
 // The parameters t where origin + t·direction lies in every half-space n·x <= offset, as
 // [low, high]; nullopt when none.
@@ -35,7 +43,7 @@ std::optional<std::pair<double, double>> lineInterval(std::span<const HullPlane>
     const double along = plane.normal.dot(direction);
     const double room = plane.offset - plane.normal.dot(origin);
     if (std::abs(along) < 1e-12) {
-      if (room < 0) return std::nullopt;
+      if (room < -kOnPlane) return std::nullopt;  // parallel: on the plane counts as inside
     } else if (along > 0) {
       high = std::min(high, room / along);
     } else {
@@ -362,18 +370,19 @@ std::optional<Support> PlacementGeometry::supportAt(const GeometricState& state,
   if (collides(state, scratch, object, pose)) return std::nullopt;
   const SupportTolerance tolerance = supportTolerance(object);
   std::optional<Support> first;
-  const bool supported = allBottomProbes(
-      world_.scene().body(object), pose, tolerance.drop, tolerance.band,
-      [&](const SegmentSupport& segment) {
-        std::optional<Support> support;
-        if (const auto hit = probeTouches(world_.scene(), state.placements, segment, object)) {
-          support = Support{Support::Kind::Object, *hit};
-        } else if (const auto floor = floorOn(segment)) {
-          support = Support{Support::Kind::Location, *floor};
-        }
-        if (!first) first = support;
-        return support.has_value();
-      });
+  const bool supported =
+      allBottomProbes(world_.scene().body(object), pose, tolerance.drop, tolerance.band,
+                      [&](const SegmentSupport& segment) {
+                        std::optional<Support> support;
+                        if (const auto hit = probeTouches(world_.scene(), state.placements, segment,
+                                                          object, kProbeMargin)) {
+                          support = Support{Support::Kind::Object, *hit};
+                        } else if (const auto floor = floorOn(segment)) {
+                          support = Support{Support::Kind::Location, *floor};
+                        }
+                        if (!first) first = support;
+                        return support.has_value();
+                      });
   return supported ? first : std::nullopt;
 }
 
@@ -555,7 +564,7 @@ std::optional<std::size_t> PlacementGeometry::objectOnTop(const GeometricState& 
     bool touches = false;
     allBottomProbes(body, *pose, tolerance.drop, tolerance.band, [&](const SegmentSupport& probe) {
       for (std::size_t p = 0; p < base.pieceCount() && !touches; ++p) {
-        touches = intersects(probe, TransformedSupport(base.piece(p), *below));
+        touches = intersects(probe, TransformedSupport(base.piece(p), *below), kProbeMargin);
       }
       return !touches;
     });
