@@ -14,8 +14,9 @@ namespace {
 
 // The layout, in metres: the table's top and centre, the bottles (their height, and the circle
 // they stand on: at least kCircleRadius from the centre, and kLocationSpacing apart along it),
-// the half-widths of a location's square and of `any`, a strip across the middle that both arms
-// reach (robot1 as far as x 0.575, robot2 from x 0.425) and no location overlaps.
+// the half-widths of a location's square (8 cm: besides a bottle, 3 cm wide, standing at its
+// centre, a second one fits in a corner only) and of `any`, a strip across the middle that both
+// arms reach (robot1 as far as x 0.575, robot2 from x 0.425) and no location overlaps.
 constexpr double kTableTop = 0.30;
 constexpr double kCentreX = 0.5;
 constexpr double kBottleHeight = 0.12;
