@@ -4,6 +4,7 @@
 // back and verified independently.
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <nlohmann/json.hpp>
 
 #include "../support/test_support.hpp"
@@ -26,16 +27,25 @@ const World& bartender() {
   return world;
 }
 
+// Solves examples/bartender's `problem` with search `mode` (paths verified if `verify`).
+SolveResult solveBartender(const std::string& problem, const std::string& mode, bool verify,
+                           std::unique_ptr<Solver>* solverOut = nullptr) {
+  SolveOptions options;
+  options.search.mode = mode;
+  options.search.limits.seconds = 120;
+  options.verify = verify;
+  auto solver = std::make_unique<Solver>(
+      bartender(), symbolic::loadContingent(example("domain.pddl"), example(problem)), options);
+  SolveResult result = solver->solve();
+  if (solverOut != nullptr) *solverOut = std::move(solver);
+  return result;
+}
+
 }  // namespace
 
 TEST(Bartender, OneBottleBranchesOnSensingAndHandsTheEmptyBottleOver) {
-  SolveOptions options;
-  options.search.mode = "astar";
-  options.search.limits.seconds = 120;
-  Solver solver(bartender(),
-                symbolic::loadContingent(example("domain.pddl"), example("problem-1.pddl")),
-                options);
-  const SolveResult result = solver.solve();
+  std::unique_ptr<Solver> solver;
+  const SolveResult result = solveBartender("problem-1.pddl", "astar", true, &solver);
   ASSERT_EQ(result.status, PlannerStatus::Solved) << result.message;
   EXPECT_TRUE(result.verification.passed()) << result.message;
   EXPECT_EQ(result.verification.collidingPaths, 0U);
@@ -62,7 +72,7 @@ TEST(Bartender, OneBottleBranchesOnSensingAndHandsTheEmptyBottleOver) {
   }
   // The plan file reads back and passes the independent check.
   const nlohmann::json file = planFileJson(
-      solver, result, {example("domain.pddl"), example("problem-1.pddl"), example("scene.yaml")});
+      *solver, result, {example("domain.pddl"), example("problem-1.pddl"), example("scene.yaml")});
   const PlanCheck check = verifyPlanFile(
       bartender(), symbolic::loadContingent(example("domain.pddl"), example("problem-1.pddl")),
       file, "plan.json");
@@ -73,14 +83,7 @@ TEST(Bartender, OneBottleBranchesOnSensingAndHandsTheEmptyBottleOver) {
 // branch by branch (paths are verified in the test above; here the search is what differs).
 TEST(Bartender, TwoBottlesSolveWithEverySearchMode) {
   for (const std::string mode : {"gbfs", "astar", "bfs", "dfs"}) {
-    SolveOptions options;
-    options.search.mode = mode;
-    options.search.limits.seconds = 120;
-    options.verify = false;
-    Solver solver(bartender(),
-                  symbolic::loadContingent(example("domain.pddl"), example("problem-2.pddl")),
-                  options);
-    const SolveResult result = solver.solve();
+    const SolveResult result = solveBartender("problem-2.pddl", mode, false);
     ASSERT_EQ(result.status, PlannerStatus::Solved) << mode << ": " << result.message;
     EXPECT_TRUE(result.verification.symbolic.valid) << mode << ": " << result.message;
     EXPECT_EQ(symbolic::measure(result.plan).leaves, 4.0) << mode;
@@ -88,13 +91,7 @@ TEST(Bartender, TwoBottlesSolveWithEverySearchMode) {
 }
 
 TEST(Bartender, IterativeDeepeningFindsTheHandover) {
-  SolveOptions options;
-  options.search.mode = "ids";
-  options.search.limits.seconds = 120;
-  Solver solver(bartender(),
-                symbolic::loadContingent(example("domain.pddl"), example("problem-1.pddl")),
-                options);
-  const SolveResult result = solver.solve();
+  const SolveResult result = solveBartender("problem-1.pddl", "ids", true);
   ASSERT_EQ(result.status, PlannerStatus::Solved) << result.message;
   EXPECT_TRUE(result.verification.passed()) << result.message;
   EXPECT_EQ(symbolic::measure(result.plan).actions, 6.0)
