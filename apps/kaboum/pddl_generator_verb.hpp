@@ -1,8 +1,10 @@
 // Verbs that write a generated PDDL domain and problem for a size n (`stacked`, `force-sensing`):
-// the options, the files and the printed paths are the same for all of them.
+// the options, the files and the printed paths are the same for all of them. A scenario with
+// geometry (`stacked --scene`) writes its domain with geometric attachments, problem and scene.
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "verb.hpp"
@@ -16,7 +18,20 @@ struct PddlGenerator {
   std::function<std::string(int n)> problem;  // the problem text; throws InputError for bad n
 };
 
-// Declares `n`, `--out-dir` and `--quiet` on `command`; the runner writes both files.
-VerbRunner setupPddlGeneratorVerb(CLI::App& command, PddlGenerator generator);
+// The scenario with geometry, written instead with `--scene`: STEM-domain.pddl, STEM-N.pddl and
+// the scene STEM-N.yaml, whose robot URDF is `--urdf` (a path from the working directory, written
+// relative to the scene file's folder).
+struct SceneGenerator {
+  std::string fileStem;
+  std::function<std::string()> domain;
+  std::function<std::string(int n)> problem;
+  std::function<std::string(int n, const std::string& urdf)> scene;
+  std::string defaultUrdf;
+};
+
+// Declares `n`, `--out-dir` and `--quiet` on `command` (and `--scene`, `--urdf` with a scene
+// generator); the runner writes the files.
+VerbRunner setupPddlGeneratorVerb(CLI::App& command, PddlGenerator generator,
+                                  std::optional<SceneGenerator> scene = std::nullopt);
 
 }  // namespace kaboum::cli
