@@ -5,6 +5,7 @@
 
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
 
 #include "kaboum/core/error.hpp"
@@ -23,10 +24,20 @@ struct Options {
   tamp::SolveOptions solve;
   double motionTimeLimit = 2;
   double memoryLimitMegabytes = 8000;
+  std::string placement = "random";
   std::string planOut;
   bool json = false;
   bool quiet = false;
 };
+
+// The values of --placement.
+const std::map<std::string, world::SearchStrategy>& placementStrategies() {
+  static const std::map<std::string, world::SearchStrategy> strategies{
+      {"random", world::SearchStrategy::Random},
+      {"quadtree", world::SearchStrategy::Quadtree},
+      {"linear", world::SearchStrategy::Linear}};
+  return strategies;
+}
 
 void printSummary(const tamp::SolveResult& result) {
   const tamp::GeometricStatistics& geometric = result.geometric;
@@ -67,6 +78,7 @@ void printSummary(const tamp::SolveResult& result) {
 
 int run(Options& options) {
   options.solve.geometry.motion.timeLimit = options.motionTimeLimit;
+  options.solve.geometry.placementStrategy = placementStrategies().at(options.placement);
   // The PDDL first: its mistakes show before the scene's preprocessing.
   symbolic::ContingentProblem problem =
       symbolic::loadContingent(options.files.domain, options.files.problem);
@@ -160,6 +172,12 @@ VerbRunner setup(CLI::App& command) {
       .add_option("--planner", options->solve.geometry.motion.planner,
                   "Motion planner when a straight segment collides")
       ->check(CLI::IsMember(motion::motionPlannerNames()))
+      ->capture_default_str();
+  command
+      .add_option("--placement", options->placement,
+                  "How putDown samples a location for a placement (seed 003 Fig. 2): random, "
+                  "quadtree (the centre first: the same placement in the same state) or linear")
+      ->check(CLI::IsMember(placementStrategies()))
       ->capture_default_str();
   command
       .add_option("--grasp-samples", options->solve.geometry.graspSamples,
