@@ -130,9 +130,10 @@ std::string circularRearrangeScene(int n) {
       R"(# The Bimanual Circular Rearrange scenario (thesis §6.2.1, Figure 6.3) with geometry, {0} bottles:
 # two KUKA KR5 sixx R650 arms (Debian's dart-doc) with two-finger grippers face each other across a
 # table as in examples/bartender; the bottles stand on a circle around the table's centre at
-# loc1..loc{0}, loc1 on robot1's side. Locations near robot1's base only robot1 reaches, those near
-# robot2's only robot2; `any`, the middle of the table inside the circle, both. Written by
-# `kaboum circular-rearrange {0}`; format: docs/scene-format.md.
+# loc1..loc{0}, loc1 on robot1's side. The half of the circle near robot1's base only robot1
+# reaches (robot2 at most the edges of its squares), the other half only robot2; `any`, a strip
+# across the middle inside the circle, both. Written by `kaboum circular-rearrange {0}`; format:
+# docs/scene-format.md.
 settings:
   epsilon: 0.005        # metres
   sweep_epsilon: 0.005  # metres

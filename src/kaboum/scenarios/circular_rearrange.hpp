@@ -21,8 +21,8 @@ std::string circularRearrangeDomain(bool handover = false);
 std::string circularRearrangeProblem(int n);
 // Scene file (docs/scene-format.md) for n bottles: two KUKA KR5 sixx R650 arms (Debian's
 // dart-doc) 1 m apart facing each other across the table, as in examples/bartender; the bottles
-// on a circle around the table's centre, loc1 on robot1's side, so that the locations on either
-// side of the circle are reached by one arm only; `any`, the middle of the table inside the
+// on a circle around the table's centre, loc1 on robot1's side, so that the bottles on either
+// half of the circle are reached by one arm only; `any`, a strip across the middle inside the
 // circle, by both. Throws InputError for an n the problem rejects.
 std::string circularRearrangeScene(int n);
 
