@@ -6,9 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
-#include <numeric>
 
 #include "../support/test_support.hpp"
+#include "attachment_calls.hpp"
 #include "kaboum/io/scene_file.hpp"
 #include "kaboum/symbolic/contingent_parser.hpp"
 #include "kaboum/tamp/plan_file.hpp"
@@ -30,21 +30,7 @@ const World& cell() {
   return world;
 }
 
-// Applies effect `name` of `attachments` with `arguments` in state `stateId`: the state reached,
-// or nullopt when the effect fails.
-std::optional<std::size_t> apply(GeometricAttachments& attachments, const std::string& name,
-                                 const std::vector<std::string>& arguments, std::size_t stateId) {
-  symbolic::ProcedureRegistry registry;
-  attachments.registerProcedures(registry);
-  std::vector<symbolic::ObjectId> ids(arguments.size());
-  std::iota(ids.begin(), ids.end(), 0);
-  const std::vector<double> reads{static_cast<double>(stateId)};
-  double reached = -1;
-  if (!(*registry.applicator(name))({ids, &arguments, reads}, std::span(&reached, 1))) {
-    return std::nullopt;
-  }
-  return static_cast<std::size_t>(reached);
-}
+using calls::apply;
 
 std::vector<std::pair<GeometricStep::Kind, std::size_t>> kindsAndRobots(
     const ActionGeometry& action) {

@@ -3,9 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
-#include <numeric>
 
 #include "../support/test_support.hpp"
+#include "attachment_calls.hpp"
 #include "kaboum/core/error.hpp"
 #include "kaboum/symbolic/contingent_parser.hpp"
 #include "kaboum/tamp/solver.hpp"
@@ -275,16 +275,7 @@ std::vector<GeometricStep::Kind> stepKinds(const SolveResult& result,
   return {};
 }
 
-// Calls condition checker `name` of a fresh attachment library on `state` with `arguments`.
-bool check(GeometricAttachments& attachments, const std::string& name,
-           const std::vector<std::string>& arguments, std::size_t stateId) {
-  symbolic::ProcedureRegistry registry;
-  attachments.registerProcedures(registry);
-  std::vector<symbolic::ObjectId> ids(arguments.size());
-  std::iota(ids.begin(), ids.end(), 0);
-  const std::vector<double> reads{static_cast<double>(stateId)};
-  return (*registry.checker(name))({ids, &arguments, reads});
-}
+using calls::check;
 
 }  // namespace
 
