@@ -375,6 +375,13 @@ TEST(SolveCli, BadInputGivesOneLineAndExitCodeTwoAndNoPlanExitCodeOne) {
   run = test::runCli(dir, "solve " + domain + " '" + example("problem.pddl") + "' missing.yaml");
   EXPECT_EQ(run.exitCode, 2);
   EXPECT_PRED_FORMAT2(::testing::IsSubstring, "missing.yaml", run.err);
+  for (const std::string option : {"--memory-limit 0", "--search beam"}) {
+    run = test::runCli(
+        dir, "solve " + domain + " '" + example("problem.pddl") + "' " + scene + " " + option);
+    EXPECT_EQ(run.exitCode, 2) << option;
+    EXPECT_EQ(test::lineCount(run.err), 1U) << run.err;
+    EXPECT_PRED_FORMAT2(::testing::IsSubstring, option.substr(0, option.find(' ')), run.err);
+  }
   // A goal the geometry cannot reach: the block into a region of the air. Picking the block up and
   // putting it back elsewhere leads to ever new geometric states, so the time limit ends it.
   const std::string air = dir.write(
