@@ -184,6 +184,12 @@ VerbRunner setup(CLI::App& command) {
                   "Grasps tried per pickUp call")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  command
+      .add_option("--samples", options->solve.search.samples,
+                  "Geometric samples per (state, action): successors of an action with "
+                  "geometric effects (1: the thesis's branching factor of one)")
+      ->check(CLI::Range(1u, 1000u))
+      ->capture_default_str();
   command.add_flag(
       "--no-verify", [options](std::int64_t) { options->solve.verify = false; },
       "Skip replaying the paths on the original meshes (the symbolic validation "

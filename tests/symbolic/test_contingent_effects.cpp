@@ -5,9 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <map>
 #include <string>
+#include <vector>
 
+#include "kaboum/core/error.hpp"
 #include "kaboum/symbolic/contingent.hpp"
 #include "kaboum/symbolic/heuristic.hpp"
 
@@ -174,6 +177,78 @@ TEST(ContingentEffects, TheRelaxationKnowsANegatedAtomNoActionDeletes) {
   const std::unique_ptr<Heuristic> ff = makeHeuristic("ff", task.task());
   for (const std::uint32_t w : task.initialBelief()) {
     EXPECT_EQ(ff->evaluate(task.world(w), nullptr), task.world(w).atom(broken) ? 1 : 0);
+  }
+}
+
+TEST(ContingentEffects, SeveralGeometricSamplesPerCallFindWhatTheFirstMisses) {
+  // `put` may run once; only its third sample (sample 2) leaves a state that `finish` accepts.
+  // With one sample per call the search is exhausted; with three it finds the plan, which names
+  // the sample, reads back, validates and executes.
+  const std::string domain = R"((define (domain samples)
+    (:requirements :strips :typing :numeric-fluents :semantic-attachments)
+    (:types item)
+    (:predicates (placed) (goal))
+    (:functions (state))
+    (:modules (drop ?i - item (state) effect drop :reads ((state)))
+              (good ?i - item conditionchecker good :reads ((state))))
+    (:action put :parameters (?i - item) :precondition (not (placed))
+      :effect (and (placed) [drop ?i]))
+    (:action finish :parameters (?i - item) :precondition (and (placed) [good ?i])
+      :effect (goal))))";
+  const std::string problem = R"((define (problem p) (:domain samples)
+    (:objects cup - item)
+    (:init (= (state) 0))
+    (:goal (goal))))";
+  const ContingentProblem contingent = parseTexts(domain, problem);
+  std::vector<std::uint32_t> drawn;
+  ProcedureRegistry procedures;
+  procedures.addApplicator("drop", [&drawn](const AttachmentArgs& args, std::span<double> out) {
+    drawn.push_back(args.sample);
+    out[0] = 10 + args.sample;
+    return true;
+  });
+  procedures.addChecker("good", [](const AttachmentArgs& args) { return args.reads[0] == 12; });
+  for (const std::string mode : {"bfs", "dfs", "gbfs"}) {
+    SCOPED_TRACE(mode);
+    {
+      KnowledgeTask task(contingent, procedures);
+      ContingentOptions one;
+      one.mode = mode;
+      EXPECT_EQ(solveContingent(task, one).status, PlannerStatus::Unsolvable);
+    }
+    drawn.clear();
+    KnowledgeTask task(contingent, procedures);
+    ContingentOptions three;
+    three.mode = mode;
+    three.samples = 3;
+    const ContingentResult result = solveContingent(task, three);
+    ASSERT_EQ(result.status, PlannerStatus::Solved);
+    EXPECT_EQ(drawn, (std::vector<std::uint32_t>{0, 1, 2}));  // each sample computed once
+    const std::string text = formatPlanTree(task, result.plan);
+    EXPECT_EQ(text, "(plan\n  (sample 2 (put cup))\n  (finish cup))\n");
+    const PlanTree read = parsePlanTree(text, "plan.txt", task);
+    EXPECT_EQ(formatPlanTree(task, read), text);
+    EXPECT_TRUE(validatePlanTree(task, read, "plan.txt").valid);
+    EXPECT_TRUE(executePlanTree(task, read, task.initialBelief()[0]).reachedGoal);
+    const PlanTree first =
+        parsePlanTree("(plan (sample 0 (put cup)) (finish cup))", "first.txt", task);
+    EXPECT_EQ(validatePlanTree(task, first, "first.txt").message,
+              "first.txt:1:28: precondition of (finish cup) is not known to hold");
+  }
+}
+
+TEST(ContingentEffects, APlanNamesItsSamplesAsNumbers) {
+  const ContingentProblem contingent =
+      parseTexts("(define (domain d) (:predicates (goal)) (:action finish :effect (goal)))",
+                 "(define (problem p) (:domain d) (:goal (goal)))");
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  for (const std::string sample : {"-1", "two", "1.5", "4294967296"}) {
+    try {
+      parsePlanTree("(plan (sample " + sample + " (finish)))", "plan.txt", task);
+      ADD_FAILURE() << sample;
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()), "plan.txt:1:15: expected a sample number: " + sample);
+    }
   }
 }
 

@@ -8,6 +8,8 @@
 #include "attachment_calls.hpp"
 #include "kaboum/core/error.hpp"
 #include "kaboum/symbolic/contingent_parser.hpp"
+#include "kaboum/tamp/plan_file.hpp"
+#include "kaboum/tamp/plan_reader.hpp"
 #include "kaboum/tamp/solver.hpp"
 
 namespace kaboum::tamp {
@@ -321,6 +323,89 @@ TEST(GeometricAttachments, PlacementCheckersSeeTheInitialState) {
       << "identifier 5 is no geometric state yet";
 }
 
+namespace {
+
+// The pick-and-place scene with a location `corner`, a quarter of the right region.
+const World& cornerWorld() {
+  static const World world = [] {
+    const test::ScratchDir dir;
+    const std::string scene = dir.write(
+        "scene.yaml", test::slurp(pickAndPlaceScene()) +
+                          "  - name: corner\n"
+                          "    region: {box: {min: [0.3, -0.25, -0.1], max: [0.45, -0.1, 0.1]}}\n");
+    return World(readSceneFile(scene), {MeshPieces::Hulls, std::nullopt});
+  }();
+  return world;
+}
+
+// Pick the block up once and put it down once in the right region (a random placement there); the
+// goal asks that it stands in the corner.
+const char* const kCornerDomain = R"((define (domain corner)
+  (:requirements :strips :typing :negative-preconditions :numeric-fluents)
+  (:types robot item location)
+  (:predicates (handempty ?r - robot) (holding ?r - robot ?o - item) (moved)
+               (dropzone ?l - location) (done ?l - location))
+  (:functions (geometry))
+  (:modules
+    (grasp ?r - robot ?o - item (geometry) effect pickUp :reads ((geometry)))
+    (place ?r - robot ?o - item ?l - location (geometry) effect putDown :reads ((geometry)))
+    (inside ?o - item ?l - location conditionchecker isInside :reads ((geometry))))
+  (:action pickup :parameters (?r - robot ?o - item)
+    :precondition (and (handempty ?r) (not (moved)))
+    :effect (and (not (handempty ?r)) (holding ?r ?o) [grasp ?r ?o]))
+  (:action putdown :parameters (?r - robot ?o - item ?l - location)
+    :precondition (and (holding ?r ?o) (dropzone ?l))
+    :effect (and (handempty ?r) (not (holding ?r ?o)) (moved) [place ?r ?o ?l]))
+  (:action confirm :parameters (?o - item ?l - location)
+    :precondition (and (moved) [inside ?o ?l]) :effect (done ?l))))";
+
+const char* const kCornerProblem = R"((define (problem p) (:domain corner)
+  (:objects kr5 - robot block - item right corner - location)
+  (:init (handempty kr5) (dropzone right) (= (geometry) 0))
+  (:goal (and (done corner) (handempty kr5)))))";
+
+// The plan's putdown into the right region, reached by a placement in the corner.
+SolveResult solveCorner(std::uint32_t samples, std::uint64_t seed) {
+  SolveOptions options;
+  options.search.mode = "bfs";
+  options.search.samples = samples;
+  options.geometry.seed = seed;
+  Solver solver(cornerWorld(), parse(kCornerDomain, kCornerProblem), options);
+  return solver.solve();
+}
+
+}  // namespace
+
+TEST(Solver, SeveralSamplesPerCallFindAPlacementThatOneSampleMisses) {
+  // With seed 2 the first placement in the right region falls outside the corner (the domain
+  // allows one putdown), so the thesis's one sample per call finds no plan; 16 do, and the plan
+  // names the sample, which its plan file keeps and verify-plan replays.
+  constexpr std::uint64_t kSeed = 2;
+  EXPECT_EQ(solveCorner(1, kSeed).status, PlannerStatus::Unsolvable);
+  SolveOptions options;
+  options.search.mode = "bfs";
+  options.search.samples = 16;
+  options.geometry.seed = kSeed;
+  Solver solver(cornerWorld(), parse(kCornerDomain, kCornerProblem), options);
+  const SolveResult result = solver.solve();
+  ASSERT_EQ(result.status, PlannerStatus::Solved) << result.message;
+  EXPECT_TRUE(result.verification.passed());
+  int sampled = -1;
+  for (const symbolic::PlanTree::Node& node : result.plan.nodes) {
+    if (node.kind == symbolic::PlanTree::Node::Kind::Action && node.sample > 0) {
+      sampled = static_cast<int>(&node - result.plan.nodes.data());
+    }
+  }
+  ASSERT_GE(sampled, 0) << symbolic::formatPlanTree(solver.task(), result.plan);
+  const nlohmann::json file =
+      planFileJson(solver, result, {"domain.pddl", "problem.pddl", "scene.yaml"});
+  EXPECT_EQ(file["nodes"][static_cast<std::size_t>(sampled)]["sample"],
+            result.plan.nodes[static_cast<std::size_t>(sampled)].sample);
+  const PlanCheck check =
+      verifyPlanFile(cornerWorld(), parse(kCornerDomain, kCornerProblem), file, "plan.json");
+  EXPECT_TRUE(check.passed()) << check.verification.symbolic.message;
+}
+
 TEST(SolveCli, PrintsThePlanAndWritesThePlanFile) {
   test::ScratchDir dir;
   const std::string files = "'" + example("domain.pddl") + "' '" + example("problem.pddl") + "' '" +
@@ -375,7 +460,7 @@ TEST(SolveCli, BadInputGivesOneLineAndExitCodeTwoAndNoPlanExitCodeOne) {
   run = test::runCli(dir, "solve " + domain + " '" + example("problem.pddl") + "' missing.yaml");
   EXPECT_EQ(run.exitCode, 2);
   EXPECT_PRED_FORMAT2(::testing::IsSubstring, "missing.yaml", run.err);
-  for (const std::string option : {"--memory-limit 0", "--search beam"}) {
+  for (const std::string option : {"--memory-limit 0", "--search beam", "--samples 0"}) {
     run = test::runCli(
         dir, "solve " + domain + " '" + example("problem.pddl") + "' " + scene + " " + option);
     EXPECT_EQ(run.exitCode, 2) << option;

@@ -47,7 +47,10 @@ AttachmentRuntime::AttachmentRuntime(const Domain& domain, const Problem& proble
     : problem_(problem) {
   std::unordered_map<std::string, void*> opened;
   for (const Module& module : domain.modules) {
-    auto binding = std::make_unique<Binding>(module.paramTypes.size() + module.reads.size());
+    // An effect applicator's memo key ends with the sample.
+    const std::size_t sampleSlot = module.kind == Module::Kind::ConditionChecker ? 0 : 1;
+    auto binding =
+        std::make_unique<Binding>(module.paramTypes.size() + module.reads.size() + sampleSlot);
     binding->stats.name = module.name;
     binding->writeCount = module.writes.size();
     const auto fail = [&](const std::string& what) {
@@ -101,6 +104,8 @@ bool AttachmentRuntime::call(Binding& binding, std::span<const ObjectId> args,
   std::size_t k = 0;
   for (const ObjectId arg : args) binding.key[k++] = static_cast<std::uint64_t>(arg);
   for (const double read : reads) binding.key[k++] = std::bit_cast<std::uint64_t>(read);
+  const std::uint32_t sample = k < binding.key.size() ? sample_ : 0;
+  if (k < binding.key.size()) binding.key[k] = sample;
   const auto [id, inserted] = binding.memo.insert(binding.key);
   const std::size_t at = static_cast<std::size_t>(id) * binding.writeCount;
   if (!inserted) {
@@ -111,7 +116,7 @@ bool AttachmentRuntime::call(Binding& binding, std::span<const ObjectId> args,
   }
   binding.resultWrites.resize(at + binding.writeCount);
   std::span<double> out(binding.resultWrites.data() + at, binding.writeCount);
-  const AttachmentArgs input{args, &problem_.objectNames, reads};
+  const AttachmentArgs input{args, &problem_.objectNames, reads, sample};
   const auto start = std::chrono::steady_clock::now();
   bool result = false;
   if (binding.native != nullptr) {

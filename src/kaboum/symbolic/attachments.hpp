@@ -5,6 +5,7 @@
 #pragma once
 
 #include <chrono>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <span>
@@ -18,12 +19,16 @@
 
 namespace kaboum::symbolic {
 
-// What a procedure receives: its arguments (object ids and names) and the values of the fluents
-// its module declares under `:reads`, in declaration order.
+// What a procedure receives: its arguments (object ids and names), the values of the fluents its
+// module declares under `:reads`, in declaration order, and, for an effect applicator, which of
+// the search's geometric samples of this call it computes (0 unless the search asks for several
+// outcomes per call, ContingentOptions::samples): a sampling procedure draws sample s from a
+// generator seeded apart for each s.
 struct AttachmentArgs {
   std::span<const ObjectId> objects;
   const std::vector<std::string>* objectNames = nullptr;
   std::span<const double> reads;
+  std::uint32_t sample = 0;
 
   std::string_view name(std::size_t i) const { return (*objectNames)[objects[i]]; }
 };
@@ -35,7 +40,8 @@ using ConditionChecker = std::function<bool(const AttachmentArgs&)>;
 using EffectApplicator = std::function<bool(const AttachmentArgs&, std::span<double> writes)>;
 
 // C ABI of procedures loaded from a shared library (`proc@libfoo.so`): returns nonzero for
-// true/success. Condition checkers get writeCount == 0.
+// true/success. Condition checkers get writeCount == 0. They are not told the sample: every sample
+// of a call to one gives its one outcome.
 extern "C" {
 using KaboumProcedure = int (*)(const char* const* args, std::size_t argCount, const double* reads,
                                 std::size_t readCount, double* writes, std::size_t writeCount);
@@ -75,8 +81,13 @@ class AttachmentRuntime {
 
   bool check(int module, std::span<const ObjectId> args, std::span<const double> reads);
   // Writes the module's output fluent values into `writes`; false if the effect is infeasible.
+  // Computes sample `sample()` of the call; each sample is memoized apart.
   bool apply(int module, std::span<const ObjectId> args, std::span<const double> reads,
              std::span<double> writes);
+
+  // The sample that apply() computes (AttachmentArgs::sample), until set again.
+  void setSample(std::uint32_t sample) { sample_ = sample; }
+  [[nodiscard]] std::uint32_t sample() const { return sample_; }
 
   std::vector<ModuleStatistics> statistics() const;
   bool empty() const { return bindings_.empty(); }
@@ -87,6 +98,7 @@ class AttachmentRuntime {
             std::span<double> writes);
 
   const Problem& problem_;
+  std::uint32_t sample_ = 0;
   std::vector<std::unique_ptr<Binding>> bindings_;
   std::vector<void*> libraries_;
 };

@@ -92,6 +92,7 @@ class AndOrSearch {
   struct Candidate {
     int score = 0;
     int op = 0;
+    std::uint32_t sample = 0;  // of its effect applicators
     // Its effect applicators (geometry) run when the search reaches it; `score` is its preview's.
     bool deferred = false;
     int root = 0;  // index into the candidate's outcomes
@@ -223,14 +224,15 @@ class AndOrSearch {
   // Applies `op` to knowledge state `id`, effect applicators included, into `candidate` with its
   // outcome tree and worst-world heuristic value. False if infeasible, a no-op or a relaxed dead
   // end.
-  bool evaluate(int op, int id, Candidate& candidate) {
+  bool evaluate(int op, std::uint32_t sample, int id, Candidate& candidate) {
     const Belief& belief = *beliefs_[id];
     Belief next;
-    const bool feasible = task_.apply(op, belief, next);
+    const bool feasible = task_.apply(op, belief, next, sample);
     if (task_.callsEffectApplicator(op)) learn(op, feasible);
     if (!feasible || next == belief) return false;
     ++stats_.generated;
     candidate.op = op;
+    candidate.sample = sample;
     candidate.deferred = false;
     candidate.outcomes.clear();
     candidate.root = outcome(std::move(next), candidate.outcomes);
@@ -248,8 +250,9 @@ class AndOrSearch {
 
   // Applicable actions of knowledge state `id`; relaxed dead ends dropped. An action that calls
   // effect applicators is deferred: scored by its preview (its symbolic effects), its geometry
-  // computed only when the search reaches it, as a lazy search evaluates successors. The others
-  // come with their outcome trees; sensing actions (outcomes that branch) first, then by score.
+  // computed only when the search reaches it, as a lazy search evaluates successors, once per
+  // geometric sample (ContingentOptions::samples). The others come with their outcome trees;
+  // sensing actions (outcomes that branch) first, then by score.
   std::vector<Candidate> expand(int id) {
     const Belief& belief = *beliefs_[id];
     std::vector<Candidate> candidates;
@@ -267,10 +270,13 @@ class AndOrSearch {
           ++stats_.deadEnds;
           continue;
         }
-      } else if (!evaluate(o, id, candidate)) {
-        continue;
+        for (std::uint32_t sample = 0; sample < options_.samples; ++sample) {
+          candidates.push_back(candidate);
+          candidates.back().sample = sample;
+        }
+      } else if (evaluate(o, 0, id, candidate)) {
+        candidates.push_back(std::move(candidate));
       }
-      candidates.push_back(std::move(candidate));
     }
     // Splitting only adds knowledge, so a plan for the unsplit state also works in every branch.
     std::stable_sort(candidates.begin(), candidates.end(),
@@ -283,10 +289,11 @@ class AndOrSearch {
     return candidates;
   }
 
-  int actionNode(int op, int next) {
+  int actionNode(int op, std::uint32_t sample, int next) {
     PlanTree::Node node;
     node.kind = PlanTree::Node::Kind::Action;
     node.op = op;
+    node.sample = sample;
     node.next = next;
     return addNode(node);
   }
@@ -304,6 +311,7 @@ class AndOrSearch {
       int belief;  // -1 until a deferred action is evaluated
       int parent;
       int op;
+      std::uint32_t sample;
       long steps;  // actions from `root`
     };
     std::vector<SearchNode> nodes;
@@ -320,7 +328,7 @@ class AndOrSearch {
     const bool deepening = mode_ == OrMode::IterativeDeepening;
     for (long bound = deepening ? 1 : std::numeric_limits<long>::max(); ending < 0; ++bound) {
       bool cut = false;
-      nodes.assign(1, {root, -1, -1, 0});
+      nodes.assign(1, {root, -1, -1, 0, 0});
       std::unordered_set<int> seen{root};
       // Times each symbolic transition (the parent's symbolicKey and the action) was generated.
       std::unordered_map<std::uint64_t, int> transitions;
@@ -339,10 +347,12 @@ class AndOrSearch {
         if (nodes[index].belief < 0) {
           const auto parent = static_cast<std::size_t>(nodes[index].parent);
           Candidate candidate;
-          if (!evaluate(nodes[index].op, nodes[parent].belief, candidate)) continue;
+          if (!evaluate(nodes[index].op, nodes[index].sample, nodes[parent].belief, candidate)) {
+            continue;
+          }
           if (candidate.outcomes.size() > 1) {
             const int rest = solveOutcome(candidate.outcomes, candidate.root, depth + 1);
-            if (rest >= 0) finish(parent, actionNode(candidate.op, rest));
+            if (rest >= 0) finish(parent, actionNode(candidate.op, candidate.sample, rest));
             continue;
           }
           const int child = candidate.outcomes[0].belief;
@@ -371,7 +381,8 @@ class AndOrSearch {
               cut = true;
               continue;
             }
-            nodes.push_back({child, static_cast<int>(index), candidate.op, steps});
+            nodes.push_back(
+                {child, static_cast<int>(index), candidate.op, candidate.sample, steps});
             const std::uint64_t transition =
                 symbolic ^ (static_cast<std::uint64_t>(candidate.op) * 0x9e3779b97f4a7c15ull);
             open.push({transitions[transition]++,
@@ -380,7 +391,7 @@ class AndOrSearch {
           }
           const int rest = solveOutcome(candidate.outcomes, candidate.root, depth + 1);
           if (rest < 0) continue;
-          finish(index, actionNode(candidate.op, rest));
+          finish(index, actionNode(candidate.op, candidate.sample, rest));
           break;
         }
       }
@@ -394,7 +405,7 @@ class AndOrSearch {
     int next = ending;
     for (std::size_t i = found; i != 0; i = static_cast<std::size_t>(nodes[i].parent)) {
       if (solved_[nodes[i].belief] < 0) solved_[nodes[i].belief] = next;
-      next = actionNode(nodes[i].op, next);
+      next = actionNode(nodes[i].op, nodes[i].sample, next);
     }
     solved_[root] = next;
     return next;
@@ -544,7 +555,10 @@ std::string formatPlanTree(const KnowledgeTask& task, const PlanTree& plan) {
       const PlanTree::Node& node = plan.nodes[index];
       if (node.kind == PlanTree::Node::Kind::Goal) return;
       if (node.kind == PlanTree::Node::Kind::Action) {
-        lines.push_back(pad + "(" + task.task().operators[node.op].name + ")");
+        const std::string action = "(" + task.task().operators[node.op].name + ")";
+        lines.push_back(pad + (node.sample == 0 ? action
+                                                : "(sample " + std::to_string(node.sample) + " " +
+                                                      action + ")"));
         index = node.next;
         continue;
       }
@@ -653,8 +667,20 @@ PlanTree parsePlanTree(std::string_view text, const std::string& file, const Kno
     PlanTree::Node node;
     node.kind = PlanTree::Node::Kind::Action;
     node.pos = item.pos;
-    node.op = task.findOperator(toString(item));
-    if (node.op < 0) fail(item, "unknown or never applicable action " + toString(item));
+    const SExpr* action = &item;
+    if (item.startsWith("sample") && item.items.size() == 3 && item.items[2].isList()) {
+      const std::string& written = item.items[1].text;
+      char* end = nullptr;
+      const unsigned long sample = std::strtoul(written.c_str(), &end, 10);
+      if (!item.items[1].isAtom() || written.empty() || written[0] == '-' ||
+          end != written.c_str() + written.size() || sample > UINT32_MAX) {
+        fail(item.items[1], "expected a sample number: " + toString(item.items[1]));
+      }
+      node.sample = static_cast<std::uint32_t>(sample);
+      action = &item.items[2];
+    }
+    node.op = task.findOperator(toString(*action));
+    if (node.op < 0) fail(*action, "unknown or never applicable action " + toString(*action));
     node.next = sequence(list, i + 1);
     return add(node);
   };
@@ -695,7 +721,7 @@ TreeValidation validatePlanTree(KnowledgeTask& task, const PlanTree& plan,
                                    [&](int v) { return task.applicable(v, belief); });
       if (op == variants.end()) {
         failure = at(node, "precondition of " + name + " is not known to hold");
-      } else if (!task.apply(*op, belief, next)) {
+      } else if (!task.apply(*op, belief, next, node.sample)) {
         failure = at(node, "an attachment reports " + name + " infeasible");
       } else {
         failure = walk(node.next, next);
@@ -760,7 +786,7 @@ Execution executePlanTree(KnowledgeTask& task, const PlanTree& plan, std::uint32
       out.message = "precondition of " + name + " is false in the true state";
       return out;
     }
-    world = task.applyIn(*op, world);
+    world = task.applyIn(*op, world, node.sample);
     if (world == PackedSet::kMissing) {
       out.message = "an attachment reports " + name + " infeasible";
       return out;

@@ -3,6 +3,7 @@
 // validator that checks every branch and simulates execution against hidden true states.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -28,6 +29,8 @@ struct PlanTree {
     double value = 0.0;
     int next = -1;
     int onFalse = -1;
+    // Action: which geometric sample its effect applicators computed (AttachmentArgs::sample).
+    std::uint32_t sample = 0;
     SourcePos pos;  // where a parsed plan wrote the node
   };
   std::vector<Node> nodes;
@@ -56,6 +59,11 @@ struct ContingentOptions {
                                  // ignored by bfs and dfs
   PlannerLimits limits;
   std::size_t maxDepth = 5000;  // nested branch points on one path
+  // Geometric samples per (knowledge state, action): an action that calls effect applicators has
+  // up to this many successors, sample s computed by its applicators as AttachmentArgs::sample. 1
+  // is the thesis's geometric branching factor of one (§6.1.2); sample s > 0 of a transition waits
+  // for the search's (s+1)-th round (docs/contingent.md, "Search").
+  std::uint32_t samples = 1;
   // Called every `progressPeriod` seconds of search with the statistics so far (seconds and
   // beliefs set), for progress reports on long runs; none if empty.
   std::function<void(const ContingentStatistics&)> progress;
@@ -92,6 +100,7 @@ ContingentResult solveContingent(KnowledgeTask& task, const ContingentOptions& o
 //   (plan (grasp o1) (senseweight o1)
 //     (branch (isspillable o1) (true (transferupright o1) …) (false …)))
 // A shared node is introduced by `(label nK)` at its first occurrence and reused by `(goto nK)`.
+// An action whose geometric sample is s > 0 is written `(sample s (a x y))`.
 std::string formatPlanTree(const KnowledgeTask& task, const PlanTree& plan);
 
 // How many edges enter each node of the plan; nodes not reachable from the root have 0, and the

@@ -399,8 +399,11 @@ bool KnowledgeTask::isGoal(const Belief& belief) {
                      [&](std::uint32_t w) { return evaluator_.isGoal(world(w)); });
 }
 
-bool KnowledgeTask::apply(int op, const Belief& belief, Belief& out) {
-  return applyInWorlds(op, belief, out, true);
+bool KnowledgeTask::apply(int op, const Belief& belief, Belief& out, std::uint32_t sample) {
+  attachments_->setSample(sample);
+  const bool feasible = applyInWorlds(op, belief, out, true);
+  attachments_->setSample(0);
+  return feasible;
 }
 
 void KnowledgeTask::preview(int op, const Belief& belief, Belief& out) {
@@ -557,8 +560,11 @@ bool KnowledgeTask::isGoalIn(std::uint32_t w) {
   return evaluator_.isGoal(world(w));
 }
 
-std::uint32_t KnowledgeTask::applyIn(int op, std::uint32_t w) {
-  if (!evaluator_.apply(task_.operators[op], world(w), scratch_)) return PackedSet::kMissing;
+std::uint32_t KnowledgeTask::applyIn(int op, std::uint32_t w, std::uint32_t sample) {
+  attachments_->setSample(sample);
+  const bool feasible = evaluator_.apply(task_.operators[op], world(w), scratch_);
+  attachments_->setSample(0);
+  if (!feasible) return PackedSet::kMissing;
   // Forgetting changes what the agent knows, not the true world; a non-deterministic effect
   // takes place in it or not, as nature (the seeded generator) chooses.
   for (const AtomId marker : forgetAtoms_) {

@@ -51,7 +51,8 @@ class KnowledgeTask {
   bool applicable(int op, const Belief& belief);
   bool isGoal(const Belief& belief);
   // Applies operator `op` in every world; false if an attachment reports it infeasible somewhere.
-  bool apply(int op, const Belief& belief, Belief& out);
+  // Its effect applicators compute geometric sample `sample` (AttachmentArgs::sample).
+  bool apply(int op, const Belief& belief, Belief& out, std::uint32_t sample = 0);
   // apply() without calling effect applicators (the values they write stay as they are): the
   // symbolic part of the successor, before paying for its geometry.
   void preview(int op, const Belief& belief, Belief& out);
@@ -85,7 +86,7 @@ class KnowledgeTask {
   bool isGoalIn(std::uint32_t world);
   // Applies `op` in one true world; each non-deterministic effect `(nondet l)` takes place or not
   // as a generator seeded by seedOutcomes (default 0) decides. PackedSet::kMissing if infeasible.
-  std::uint32_t applyIn(int op, std::uint32_t world);
+  std::uint32_t applyIn(int op, std::uint32_t world, std::uint32_t sample = 0);
   void seedOutcomes(std::uint64_t seed) { outcomes_.seed(seed); }
 
   // A hash of what `belief` knows apart from the values that effect applicators write (opaque

@@ -222,6 +222,7 @@ std::mt19937_64 GeometricAttachments::generator(const std::string& procedure,
   mix(seed, std::hash<std::string>{}(procedure));
   for (const auto object : args.objects) mix(seed, static_cast<std::uint64_t>(object));
   for (const double value : args.reads) mix(seed, std::hash<double>{}(value));
+  if (args.sample != 0) mix(seed, args.sample);  // sample 0 draws as a single sample does
   return std::mt19937_64(seed);
 }
 

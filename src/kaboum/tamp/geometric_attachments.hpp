@@ -164,7 +164,7 @@ class GeometricAttachments {
   [[nodiscard]] std::optional<std::size_t> location(const symbolic::AttachmentArgs& args,
                                                     std::size_t index) const;
   motion::ToolKinematics& tool(const Arm& arm);
-  // The call's generator: the options' seed, the procedure, its arguments and read values.
+  // The call's generator: the options' seed, the procedure, its arguments, read values and sample.
   std::mt19937_64 generator(const std::string& procedure,
                             const symbolic::AttachmentArgs& args) const;
   motion::MotionResult plan(const GeometricState& context, const Arm& arm,

@@ -90,6 +90,7 @@ nlohmann::json nodeJson(Solver& solver, const SolveResult& result, std::size_t i
           {"kind", "action"},
           {"action",
            "(" + solver.task().task().operators[static_cast<std::size_t>(node.op)].name + ")"},
+          {"sample", node.sample},
           {"next", node.next},
           {"geometry", geometry}};
 }

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -220,6 +222,13 @@ class Reader {
       const std::string action = string(value, key, "action");
       node.op = task_.findOperator(toString(expression(action, key + ".action")));
       if (node.op < 0) fail(key + ".action", "unknown or never applicable action " + action);
+      if (value.contains("sample")) {
+        const std::size_t sample = index(value, key, "sample");
+        if (sample > std::numeric_limits<std::uint32_t>::max()) {
+          fail(key + ".sample", "expected a sample number below 2^32");
+        }
+        node.sample = static_cast<std::uint32_t>(sample);
+      }
       node.next = reference(value, key, "next");
       const json& geometry = array(value, key, "geometry");
       for (std::size_t g = 0; g < geometry.size(); ++g) {
@@ -283,7 +292,8 @@ std::optional<std::size_t> stateId(double value) {
   return static_cast<std::size_t>(value);
 }
 
-using TransitionKey = std::tuple<std::string, std::vector<std::string>, std::size_t>;
+// A geometric effect's call: procedure, arguments, the state it starts from, the sample.
+using TransitionKey = std::tuple<std::string, std::vector<std::string>, std::size_t, std::uint32_t>;
 
 // Replays the plan's geometry from the World's initial state along every branch.
 class Replay {
@@ -428,7 +438,7 @@ PlanCheck verifyPlanFile(const World& world, const ContingentProblem& problem, c
             std::vector<std::string> arguments;
             for (std::size_t i = 0; i < args.objects.size(); ++i)
               arguments.emplace_back(args.name(i));
-            const auto found = transitions.find({name, arguments, *from});
+            const auto found = transitions.find({name, arguments, *from, args.sample});
             if (found == transitions.end()) return false;
             writes[0] = static_cast<double>(found->second);
             return true;
@@ -455,9 +465,10 @@ PlanCheck verifyPlanFile(const World& world, const ContingentProblem& problem, c
   for (const auto& [id, state] : Replay(world, task, options, check).run()) {
     ids[id] = attachments.intern(state);
   }
-  for (const auto& node : check.contents.geometry) {
-    for (const ActionGeometry& action : node) {
-      transitions.emplace(TransitionKey{action.procedure, action.arguments, action.from},
+  for (std::size_t node = 0; node < check.contents.geometry.size(); ++node) {
+    const std::uint32_t sample = check.contents.plan.nodes[node].sample;
+    for (const ActionGeometry& action : check.contents.geometry[node]) {
+      transitions.emplace(TransitionKey{action.procedure, action.arguments, action.from, sample},
                           action.to);
     }
   }

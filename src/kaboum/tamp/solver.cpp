@@ -259,7 +259,7 @@ bool Solver::collectGeometry(SolveResult& result) {
     }
     if (node.kind != PlanTree::Node::Kind::Action) continue;
     Belief after;
-    if (!task_->apply(node.op, belief, after)) {
+    if (!task_->apply(node.op, belief, after, node.sample)) {
       result.message = "internal: a plan action does not apply on replay";
       return false;
     }
