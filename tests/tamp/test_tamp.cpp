@@ -364,14 +364,13 @@ const char* const kCornerProblem = R"((define (problem p) (:domain corner)
   (:init (handempty kr5) (dropzone right) (= (geometry) 0))
   (:goal (and (done corner) (handempty kr5)))))";
 
-// The plan's putdown into the right region, reached by a placement in the corner.
-SolveResult solveCorner(std::uint32_t samples, std::uint64_t seed) {
+// Breadth-first search with `samples` geometric samples per call and geometric seed `seed`.
+SolveOptions cornerOptions(std::uint32_t samples, std::uint64_t seed) {
   SolveOptions options;
   options.search.mode = "bfs";
   options.search.samples = samples;
   options.geometry.seed = seed;
-  Solver solver(cornerWorld(), parse(kCornerDomain, kCornerProblem), options);
-  return solver.solve();
+  return options;
 }
 
 }  // namespace
@@ -381,12 +380,9 @@ TEST(Solver, SeveralSamplesPerCallFindAPlacementThatOneSampleMisses) {
   // allows one putdown), so the thesis's one sample per call finds no plan; 16 do, and the plan
   // names the sample, which its plan file keeps and verify-plan replays.
   constexpr std::uint64_t kSeed = 2;
-  EXPECT_EQ(solveCorner(1, kSeed).status, PlannerStatus::Unsolvable);
-  SolveOptions options;
-  options.search.mode = "bfs";
-  options.search.samples = 16;
-  options.geometry.seed = kSeed;
-  Solver solver(cornerWorld(), parse(kCornerDomain, kCornerProblem), options);
+  Solver one(cornerWorld(), parse(kCornerDomain, kCornerProblem), cornerOptions(1, kSeed));
+  EXPECT_EQ(one.solve().status, PlannerStatus::Unsolvable);
+  Solver solver(cornerWorld(), parse(kCornerDomain, kCornerProblem), cornerOptions(16, kSeed));
   const SolveResult result = solver.solve();
   ASSERT_EQ(result.status, PlannerStatus::Solved) << result.message;
   EXPECT_TRUE(result.verification.passed());
