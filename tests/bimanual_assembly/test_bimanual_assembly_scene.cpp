@@ -287,15 +287,16 @@ TEST(BimanualAssemblyScene, EachArmReachesTheBearingsAndTheLeftOneThePipeAndTheT
 }
 
 // Each grasp of Table 5.1 constraints has collision-free samples from above for the arm it is
-// meant for: the left arm's fingers around a bearing, the pipe's flange and the tree's shaft; the
-// right arm's fingertips inside a bearing.
-TEST(BimanualAssemblyScene, EachGraspHasACollisionFreeSampleFromAboveForItsArm) {
+// meant for, with the part as placed and turned about its axis at random: the left arm's fingers
+// around a bearing, the pipe's flange and the tree's shaft; the right arm's fingertips inside a
+// bearing.
+TEST(BimanualAssemblyScene, EachGraspHasACollisionFreeSampleFromAboveForItsArmAtAnyTurn) {
   const World& world = bimanualWorld();
   const std::vector<std::tuple<std::size_t, std::string, std::string>> grasps{
       {0, "bearing1", "outer"}, {0, "bearing2", "outer"}, {0, "pipe", "outer"},
       {0, "tree", "outer"},     {1, "bearing1", "inner"}, {1, "bearing2", "inner"}};
+  std::mt19937_64 rng(7);
   for (const auto& [robot, part, graspName] : grasps) {
-    SCOPED_TRACE(world.robots()[robot].name + " " + part + " " + graspName);
     const std::size_t object = world.find(part)->index;
     const std::vector<GraspSpec>& specs = world.description().objects[object].grasps;
     const auto wanted = static_cast<std::size_t>(
@@ -305,22 +306,27 @@ TEST(BimanualAssemblyScene, EachGraspHasACollisionFreeSampleFromAboveForItsArm) 
     ASSERT_LT(wanted, specs.size());
     motion::ToolKinematics tool(world, robot, 0);
     GraspSampler sampler(world, tool);
-    std::mt19937_64 rng(7);
-    GeometricState state = world.initialState();
-    const Pose objectPose = state.placements[world.scene().slot(object)].pose;
-    int free = 0;
-    for (int sample = 0; sample < 64 && free == 0; ++sample) {
-      for (const GraspCandidate& candidate : sampler.sample(
-               object, objectPose, world.initialState().robots[robot].configuration, rng)) {
-        if (candidate.grasp != wanted) continue;
-        state.robots[robot].configuration = candidate.configuration;
-        if (world.firstCollision(state)) continue;
-        // The tool's z axis (its approach) points down the part's axis.
-        EXPECT_LT(candidate.tcpInObject.linear().col(2).z(), -0.999);
-        ++free;
+    const double randomTurn = std::uniform_real_distribution<double>(-M_PI, M_PI)(rng);
+    for (const double turn : {0.0, randomTurn}) {
+      SCOPED_TRACE(world.robots()[robot].name + " " + part + " " + graspName + " turned by " +
+                   std::to_string(turn));
+      GeometricState state = world.initialState();
+      Pose& objectPose = state.placements[world.scene().slot(object)].pose;
+      objectPose = objectPose * Eigen::AngleAxisd(turn, Eigen::Vector3d::UnitZ());
+      int free = 0;
+      for (int sample = 0; sample < 64 && free == 0; ++sample) {
+        for (const GraspCandidate& candidate : sampler.sample(
+                 object, objectPose, world.initialState().robots[robot].configuration, rng)) {
+          if (candidate.grasp != wanted) continue;
+          state.robots[robot].configuration = candidate.configuration;
+          if (world.firstCollision(state)) continue;
+          // The tool's z axis (its approach) points down the part's axis.
+          EXPECT_LT(candidate.tcpInObject.linear().col(2).z(), -0.999);
+          ++free;
+        }
       }
+      EXPECT_GT(free, 0);
     }
-    EXPECT_GT(free, 0);
   }
 }
 
