@@ -1,14 +1,19 @@
 // The Bimanual Assembly scene (thesis §6.2.3, examples/bimanual-assembly) checked against the
 // scenario's Robotics Library model, as its README asks: kaboum's forward kinematics of the
 // converted URDFs equal an independent evaluation of robot-*.mdl.xml with every axis moved ±10°
-// and at random configurations; at the zero configuration, every link, gripper and finger mesh
-// is where robots/robot-*.wrl puts it. Then the World: built from the bounding convex
+// and at random configurations; every link, gripper and finger mesh sits on its link as
+// robots/robot-*.wrl places it, the parts and the table where scene.wrl and static.wrl put them.
+// Then the World: built from the bounding convex
 // decomposition (through the shared test cache), collision-free at the start, each arm reaches
 // and picks up its parts, and a part moved into the table is rejected with one line.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <limits>
+#include <map>
 #include <random>
+#include <tuple>
 
 #include "../support/test_support.hpp"
 #include "../tamp/attachment_calls.hpp"
@@ -46,7 +51,7 @@ const World& bimanualWorld() {
   return world;
 }
 
-// The kinematic model alone (no geometry), from the scene file's URDFs.
+// The scene file as read (no geometry built).
 const SceneDescription& description() {
   static const SceneDescription scene = readSceneFile(sceneFile());
   return scene;
