@@ -1,11 +1,13 @@
 #include "rl_reference.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 
 namespace kaboum::rl {
 
