@@ -54,6 +54,12 @@ void printSummary(const tamp::SolveResult& result) {
       geometric.ikSeconds, geometric.motionQueries, geometric.motionSeconds,
       geometric.checks.stateChecks, geometric.checks.motionChecks, result.geometricStates,
       result.search.expanded);
+  if (result.search.refinedSymbolicPlan) {
+    std::cerr << "kaboum solve: the symbolic plan refined with geometry at every step\n";
+  } else if (result.search.refinementFailed) {
+    std::cerr << "kaboum solve: the symbolic plan did not refine ("
+              << result.search.refinementFailure << "); searched with geometry\n";
+  }
   const tamp::PlanVerification& verification = result.verification;
   if (result.status == PlannerStatus::Solved) {
     std::cerr << fmt::format("verification: symbolic {}",
@@ -190,6 +196,9 @@ VerbRunner setup(CLI::App& command) {
                   "geometric effects (1: the thesis's branching factor of one)")
       ->check(CLI::Range(1u, 1000u))
       ->capture_default_str();
+  command.add_flag(
+      "--integrated", [options](std::int64_t) { options->solve.search.symbolicFirst = false; },
+      "Search with geometry from the start, without first refining symbolic plans");
   command.add_flag(
       "--no-verify", [options](std::int64_t) { options->solve.verify = false; },
       "Skip replaying the paths on the original meshes (the symbolic validation "

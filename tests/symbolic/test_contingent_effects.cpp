@@ -1,7 +1,8 @@
 // The AND–OR search with effect applicators (the integrated planner's geometry, thesis §6.1.2):
 // effects are computed only for the actions the search reaches, actions whose effects have only
 // failed leave the heuristic's relaxation, and a symbolic transition already tried waits for the
-// untried ones, so that geometric variants of one symbolic state are not enumerated first.
+// untried ones, so that geometric variants of one symbolic state are not enumerated first;
+// symbolic plans are refined first where no condition reads what the effects compute.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -19,6 +20,14 @@ namespace {
 
 ContingentProblem parseTexts(const std::string& domain, const std::string& problem) {
   return parseContingent(domain, "d.pddl", problem, "p.pddl");
+}
+
+// The search with effect applicators from the start (no symbolic plans refined first), in `mode`.
+ContingentOptions integrated(const std::string& mode = "gbfs") {
+  ContingentOptions options;
+  options.mode = mode;
+  options.symbolicFirst = false;
+  return options;
 }
 
 std::string firstArgument(const AttachmentArgs& args) {
@@ -57,7 +66,7 @@ TEST(ContingentEffects, EffectsRunOnlyForTheActionsTheSearchReaches) {
   const ContingentProblem contingent = parseTexts(domain, problem);
   std::map<std::string, int> calls;
   KnowledgeTask task(contingent, countingProcedures(calls));
-  const ContingentResult result = solveContingent(task, {});
+  const ContingentResult result = solveContingent(task, integrated());
   ASSERT_EQ(result.status, PlannerStatus::Solved);
   // Eight actions are applicable at the start; the heuristic reaches the goal with one of them.
   EXPECT_EQ(calls["c5"], 1);
@@ -99,7 +108,7 @@ TEST(ContingentEffects, ActionsWhoseEffectsFailedLeaveTheHeuristic) {
     return true;
   });
   KnowledgeTask task(contingent, procedures);
-  const ContingentResult result = solveContingent(task, {});
+  const ContingentResult result = solveContingent(task, integrated());
   ASSERT_EQ(result.status, PlannerStatus::Solved);
   EXPECT_EQ(formatPlanTree(task, result.plan),
             "(plan\n  (start home)\n  (climb home)\n  (finish home))\n");
@@ -125,8 +134,7 @@ TEST(ContingentEffects, ATransitionAlreadyTriedWaitsForUntriedOnes) {
   const ContingentProblem contingent = parseTexts(domain, problem);
   std::map<std::string, int> calls;
   KnowledgeTask task(contingent, countingProcedures(calls));
-  ContingentOptions options;
-  options.mode = "dfs";
+  ContingentOptions options = integrated("dfs");
   options.limits.expansions = 1000;
   const ContingentResult result = solveContingent(task, options);
   ASSERT_EQ(result.status, PlannerStatus::Solved);
@@ -146,7 +154,7 @@ TEST(ContingentEffects, ProgressIsReportedWhileTheSearchRuns) {
                  "(define (problem p) (:domain count) (:init (= (state) 0)) (:goal (goal)))");
   std::map<std::string, int> calls;
   KnowledgeTask task(contingent, countingProcedures(calls));
-  ContingentOptions options;
+  ContingentOptions options = integrated();
   options.limits.expansions = 50;
   std::vector<std::size_t> expanded;
   options.progress = [&expanded](const ContingentStatistics& statistics) {
@@ -212,14 +220,12 @@ TEST(ContingentEffects, SeveralGeometricSamplesPerCallFindWhatTheFirstMisses) {
     SCOPED_TRACE(mode);
     {
       KnowledgeTask task(contingent, procedures);
-      ContingentOptions one;
-      one.mode = mode;
+      const ContingentOptions one = integrated(mode);
       EXPECT_EQ(solveContingent(task, one).status, PlannerStatus::Unsolvable);
     }
     drawn.clear();
     KnowledgeTask task(contingent, procedures);
-    ContingentOptions three;
-    three.mode = mode;
+    ContingentOptions three = integrated(mode);
     three.samples = 3;
     const ContingentResult result = solveContingent(task, three);
     ASSERT_EQ(result.status, PlannerStatus::Solved);
@@ -235,6 +241,114 @@ TEST(ContingentEffects, SeveralGeometricSamplesPerCallFindWhatTheFirstMisses) {
     EXPECT_EQ(validatePlanTree(task, first, "first.txt").message,
               "first.txt:1:28: precondition of (finish cup) is not known to hold");
   }
+}
+
+TEST(ContingentEffects, ASymbolicPlanIsRefinedWhereNoConditionReadsTheEffects) {
+  // Eight chores, each done by an action with an effect applicator; nothing reads the state it
+  // writes. The symbolic plan is found first, and its effects are computed once each.
+  const std::string domain = R"((define (domain chores)
+    (:requirements :strips :typing :numeric-fluents :semantic-attachments)
+    (:types chore)
+    (:predicates (done ?c - chore))
+    (:functions (state))
+    (:modules (work ?c - chore (state) effect step :reads ((state))))
+    (:action do :parameters (?c - chore) :effect (and (done ?c) [work ?c]))))";
+  const std::string problem = R"((define (problem p) (:domain chores)
+    (:objects c1 c2 c3 c4 - chore)
+    (:init (= (state) 0))
+    (:goal (and (done c1) (done c2) (done c3) (done c4)))))";
+  const ContingentProblem contingent = parseTexts(domain, problem);
+  for (const std::string mode : {"bfs", "dfs", "gbfs", "astar", "ids"}) {
+    SCOPED_TRACE(mode);
+    std::map<std::string, int> calls;
+    KnowledgeTask task(contingent, countingProcedures(calls));
+    ContingentOptions options;
+    options.mode = mode;
+    const ContingentResult result = solveContingent(task, options);
+    ASSERT_EQ(result.status, PlannerStatus::Solved);
+    EXPECT_TRUE(result.statistics.refinedSymbolicPlan);
+    EXPECT_EQ(result.statistics.refinements, 0u);
+    EXPECT_EQ(calls, (std::map<std::string, int>{{"c1", 1}, {"c2", 1}, {"c3", 1}, {"c4", 1}}));
+    EXPECT_TRUE(validatePlanTree(task, result.plan, "plan").valid);
+  }
+}
+
+TEST(ContingentEffects, AFailedRefinementLeavesItsTransitionOutOfTheNextSymbolicPlan) {
+  // `direct` reaches the goal in one action but its effect always fails; `start` and `arrive`
+  // take two. The first symbolic plan is (direct); its refinement fails, and the next leaves that
+  // transition out: (start) (direct), which fails from the new state too; the third goes round.
+  const std::string domain = R"((define (domain detour)
+    (:requirements :strips :typing :numeric-fluents :semantic-attachments)
+    (:types place)
+    (:predicates (halfway) (goal))
+    (:functions (state))
+    (:modules (go ?p - place (state) effect step :reads ((state)))
+              (jump ?p - place (state) effect fail :reads ((state))))
+    (:action direct :parameters (?p - place) :effect (and (goal) [jump ?p]))
+    (:action start :parameters (?p - place) :effect (and (halfway) [go ?p]))
+    (:action arrive :parameters (?p - place) :precondition (halfway)
+      :effect (and (goal) [go ?p]))))";
+  const std::string problem = R"((define (problem p) (:domain detour)
+    (:objects home - place) (:init (= (state) 0)) (:goal (goal))))";
+  const ContingentProblem contingent = parseTexts(domain, problem);
+  std::map<std::string, int> calls;
+  KnowledgeTask task(contingent, countingProcedures(calls));
+  ContingentOptions options;
+  options.mode = "bfs";
+  const ContingentResult result = solveContingent(task, options);
+  ASSERT_EQ(result.status, PlannerStatus::Solved);
+  EXPECT_TRUE(result.statistics.refinedSymbolicPlan);
+  EXPECT_EQ(result.statistics.refinements, 2u);
+  EXPECT_EQ(result.statistics.refinementFailure,
+            "symbolic plan: an attachment reports (direct home) infeasible");
+  EXPECT_EQ(formatPlanTree(task, result.plan), "(plan\n  (start home)\n  (arrive home))\n");
+}
+
+TEST(ContingentEffects, WhereNoSymbolicPlanRefinesTheSearchWithEffectsTakesOver) {
+  // `put` may run once and only its third sample satisfies `finish`: no symbolic plan refines
+  // (sample 0 only), the search with effect applicators and three samples per call finds one.
+  // A condition checker reads the state here, so symbolic plans are not tried at all.
+  const std::string domain = R"((define (domain once)
+    (:requirements :strips :typing :numeric-fluents :semantic-attachments)
+    (:predicates (placed) (goal))
+    (:functions (state))
+    (:modules (drop (state) effect drop :reads ((state)))
+              (good conditionchecker good :reads ((state))))
+    (:action put :precondition (not (placed)) :effect (and (placed) [drop]))
+    (:action finish :precondition (and (placed) [good]) :effect (goal))))";
+  const std::string problem =
+      "(define (problem p) (:domain once) (:init (= (state) 0)) (:goal (goal)))";
+  const ContingentProblem contingent = parseTexts(domain, problem);
+  ProcedureRegistry procedures;
+  procedures.addApplicator("drop", [](const AttachmentArgs& args, std::span<double> out) {
+    out[0] = 10 + args.sample;
+    return true;
+  });
+  procedures.addChecker("good", [](const AttachmentArgs& args) { return args.reads[0] == 12; });
+  KnowledgeTask task(contingent, procedures);
+  ContingentOptions options;
+  options.samples = 3;
+  const ContingentResult result = solveContingent(task, options);
+  ASSERT_EQ(result.status, PlannerStatus::Solved);
+  EXPECT_FALSE(result.statistics.refinedSymbolicPlan);
+  EXPECT_FALSE(result.statistics.refinementFailed);
+  EXPECT_EQ(result.statistics.refinements, 0u);
+
+  // Without the checker, and with an effect that always fails, the one symbolic plan (put)
+  // (finish) does not refine, no other exists, and the search with effects finds none either.
+  const std::string unchecked = R"((define (domain once)
+    (:requirements :strips :typing :numeric-fluents :semantic-attachments)
+    (:predicates (placed) (goal))
+    (:functions (state))
+    (:modules (drop (state) effect fail :reads ((state))))
+    (:action put :precondition (not (placed)) :effect (and (placed) [drop]))
+    (:action finish :precondition (placed) :effect (goal))))";
+  std::map<std::string, int> calls;
+  KnowledgeTask failing(parseTexts(unchecked, problem), countingProcedures(calls));
+  const ContingentResult none = solveContingent(failing, ContingentOptions{});
+  EXPECT_EQ(none.status, PlannerStatus::Unsolvable);
+  EXPECT_TRUE(none.statistics.refinementFailed);
+  EXPECT_EQ(none.statistics.refinements, 1u);
 }
 
 TEST(ContingentEffects, APlanNamesItsSamplesAsNumbers) {

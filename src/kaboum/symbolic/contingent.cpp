@@ -32,6 +32,9 @@ struct LimitReached {
   PlannerStatus status;
 };
 
+// Symbolic plans refined before the search with effect applicators takes over (symbolicFirst).
+constexpr std::size_t kMaxRefinements = 128;
+
 enum class OrMode { Greedy, AStar, BreadthFirst, DepthFirst, IterativeDeepening };
 
 OrMode orMode(const std::string& name) {
@@ -44,11 +47,63 @@ OrMode orMode(const std::string& name) {
   return static_cast<OrMode>(it - names.begin());
 }
 
+// Whether a condition (a precondition, a conditional effect's condition, the goal) or a numeric
+// assignment reads a fluent that an effect applicator writes. If none does, the symbolic part of a
+// search does not depend on the values effect applicators compute.
+bool readsAttachmentValues(const GroundTask& task) {
+  std::vector<bool> written(task.fluentNames.size(), false);
+  for (const GroundModuleCall& call : task.moduleCalls) {
+    for (const FluentId f : call.writes) written[static_cast<std::size_t>(f)] = true;
+  }
+  const auto isWritten = [&](FluentId f) { return written[static_cast<std::size_t>(f)]; };
+  const auto codeReads = [&](const NumericCode& code) {
+    return std::any_of(code.code.begin(), code.code.end(), [&](const NumericCode::Instruction& i) {
+      return i.op == NumericCode::Op::Load && isWritten(i.fluent);
+    });
+  };
+  const auto conditionReads = [&](const Condition& c) {
+    return std::any_of(c.fluentTests.begin(), c.fluentTests.end(),
+                       [&](const FluentTest& t) { return isWritten(t.fluent); }) ||
+           std::any_of(
+               c.numericTests.begin(), c.numericTests.end(),
+               [&](const NumericTest& t) { return codeReads(t.lhs) || codeReads(t.rhs); }) ||
+           std::any_of(c.moduleChecks.begin(), c.moduleChecks.end(), [&](const ModuleCheck& m) {
+             const GroundModuleCall& call = task.moduleCalls[static_cast<std::size_t>(m.call)];
+             return std::any_of(call.reads.begin(), call.reads.end(), isWritten);
+           });
+  };
+  const auto effectReads = [&](const EffectList& effect) {
+    return std::any_of(effect.assignments.begin(), effect.assignments.end(),
+                       [&](const Assignment& a) { return !a.objectValued && codeReads(a.value); });
+  };
+  for (const Operator& op : task.operators) {
+    if (conditionReads(op.precondition) || effectReads(op.effect)) return true;
+    for (const ConditionalEffect& conditional : op.conditional) {
+      if (effectReads(conditional.effect) ||
+          std::any_of(conditional.disjuncts.begin(), conditional.disjuncts.end(), conditionReads)) {
+        return true;
+      }
+    }
+  }
+  return std::any_of(task.goal.begin(), task.goal.end(), conditionReads);
+}
+
+// A symbolic transition: a knowledge state's symbolicKey and an operator.
+std::uint64_t transitionKey(std::uint64_t symbolic, int op) {
+  return symbolic ^ (static_cast<std::uint64_t>(op) * 0x9e3779b97f4a7c15ull);
+}
+
 class AndOrSearch {
  public:
-  AndOrSearch(KnowledgeTask& task, const ContingentOptions& options)
+  // With `symbolicOnly`, actions change knowledge states by their symbolic effects alone (the
+  // values effect applicators write stay as they are), except the transitions (transitionKey) in
+  // `blocked`, which are left out: the symbolic search of symbolicFirst.
+  AndOrSearch(KnowledgeTask& task, const ContingentOptions& options,
+              const std::unordered_set<std::uint64_t>* blocked = nullptr)
       : task_(task),
         options_(options),
+        symbolicOnly_(blocked != nullptr),
+        blocked_(blocked),
         mode_(orMode(options.mode)),
         heuristic_(makeHeuristic(mode_ == OrMode::Greedy || mode_ == OrMode::AStar
                                      ? options.heuristic
@@ -227,8 +282,13 @@ class AndOrSearch {
   bool evaluate(int op, std::uint32_t sample, int id, Candidate& candidate) {
     const Belief& belief = *beliefs_[id];
     Belief next;
-    const bool feasible = task_.apply(op, belief, next, sample);
-    if (task_.callsEffectApplicator(op)) learn(op, feasible);
+    bool feasible = true;
+    if (symbolicOnly_) {
+      task_.preview(op, belief, next);
+    } else {
+      feasible = task_.apply(op, belief, next, sample);
+      if (task_.callsEffectApplicator(op)) learn(op, feasible);
+    }
     if (!feasible || next == belief) return false;
     ++stats_.generated;
     candidate.op = op;
@@ -257,11 +317,14 @@ class AndOrSearch {
     const Belief& belief = *beliefs_[id];
     std::vector<Candidate> candidates;
     Belief preview;
+    const bool anyBlocked = blocked_ != nullptr && !blocked_->empty();
+    const std::uint64_t symbolic = anyBlocked ? task_.symbolicKey(belief) : 0;
     for (std::size_t op = 0; op < task_.task().operators.size(); ++op) {
       const int o = static_cast<int>(op);
       if (!task_.applicable(o, belief)) continue;
+      if (anyBlocked && blocked_->count(transitionKey(symbolic, o)) > 0) continue;
       Candidate candidate;
-      if (task_.callsEffectApplicator(o)) {
+      if (!symbolicOnly_ && task_.callsEffectApplicator(o)) {
         task_.preview(o, belief, preview);
         candidate.op = o;
         candidate.deferred = true;
@@ -383,9 +446,7 @@ class AndOrSearch {
             }
             nodes.push_back(
                 {child, static_cast<int>(index), candidate.op, candidate.sample, steps});
-            const std::uint64_t transition =
-                symbolic ^ (static_cast<std::uint64_t>(candidate.op) * 0x9e3779b97f4a7c15ull);
-            open.push({transitions[transition]++,
+            open.push({transitions[transitionKey(symbolic, candidate.op)]++,
                        priority(steps, candidate.score, nodes.size() - 1), nodes.size() - 1});
             continue;
           }
@@ -435,6 +496,8 @@ class AndOrSearch {
 
   KnowledgeTask& task_;
   const ContingentOptions& options_;
+  bool symbolicOnly_;
+  const std::unordered_set<std::uint64_t>* blocked_;  // not owned
   OrMode mode_;
   std::unique_ptr<Heuristic> heuristic_;
   std::unique_ptr<Heuristic> learned_;  // heuristic_ without the actions found infeasible
@@ -493,7 +556,66 @@ const std::vector<std::string>& contingentSearchModes() {
 }
 
 ContingentResult solveContingent(KnowledgeTask& task, const ContingentOptions& options) {
-  return AndOrSearch(task, options).run();
+  const std::vector<Operator>& operators = task.task().operators;
+  bool effectApplicators = false;
+  for (std::size_t op = 0; op < operators.size(); ++op) {
+    effectApplicators = effectApplicators || task.callsEffectApplicator(static_cast<int>(op));
+  }
+  if (!options.symbolicFirst || !effectApplicators || readsAttachmentValues(task.task())) {
+    return AndOrSearch(task, options).run();
+  }
+  const Deadline clock;
+  ContingentStatistics total;
+  // Each limit counts over every search; the searches after the first get what is left.
+  const auto remaining = [&] {
+    ContingentOptions rest = options;
+    rest.limits.seconds = std::max(0.0, options.limits.seconds - clock.elapsedSeconds());
+    rest.limits.expansions -= std::min(total.expanded, rest.limits.expansions - 1);
+    return rest;
+  };
+  const auto add = [&](ContingentResult& result) {
+    ContingentStatistics& s = result.statistics;
+    total.expanded += s.expanded;
+    total.generated += s.generated;
+    total.evaluated += s.evaluated;
+    total.deadEnds += s.deadEnds;
+    total.reused += s.reused;
+    total.beliefs += s.beliefs;
+    total.worlds = s.worlds;
+    total.seconds = clock.elapsedSeconds();
+    s = total;
+  };
+  // Symbolic plans, each refined by applying its effect applicators along every branch; a
+  // transition whose effect failed is left out of the next symbolic search.
+  std::unordered_set<std::uint64_t> blocked;
+  while (total.refinements < kMaxRefinements) {
+    ContingentResult symbolic = AndOrSearch(task, remaining(), &blocked).run();
+    add(symbolic);
+    // Without blocked transitions the symbolic search is a relaxation of the search with effect
+    // applicators (the same symbolic transitions, none made infeasible by geometry): no plan
+    // there, or a limit reached, is the answer of both.
+    if (symbolic.status != PlannerStatus::Solved &&
+        (blocked.empty() || symbolic.status != PlannerStatus::Unsolvable)) {
+      return symbolic;
+    }
+    if (symbolic.status != PlannerStatus::Solved) break;
+    const TreeValidation refinement = validatePlanTree(task, symbolic.plan, "symbolic plan");
+    if (refinement.valid) {
+      symbolic.statistics.refinedSymbolicPlan = true;
+      symbolic.statistics.seconds = clock.elapsedSeconds();
+      return symbolic;
+    }
+    ++total.refinements;
+    total.refinementFailure = refinement.message;
+    if (refinement.infeasibleOperator < 0) break;
+    const std::uint64_t key =
+        transitionKey(task.symbolicKey(refinement.infeasibleIn), refinement.infeasibleOperator);
+    if (!blocked.insert(key).second) break;
+  }
+  ContingentResult result = AndOrSearch(task, remaining()).run();
+  add(result);
+  result.statistics.refinementFailed = true;
+  return result;
 }
 
 TreeMetrics measure(const PlanTree& plan) {
@@ -723,6 +845,8 @@ TreeValidation validatePlanTree(KnowledgeTask& task, const PlanTree& plan,
         failure = at(node, "precondition of " + name + " is not known to hold");
       } else if (!task.apply(*op, belief, next, node.sample)) {
         failure = at(node, "an attachment reports " + name + " infeasible");
+        out.infeasibleOperator = *op;
+        out.infeasibleIn = belief;
       } else {
         failure = walk(node.next, next);
       }

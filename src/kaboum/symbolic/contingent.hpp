@@ -64,6 +64,11 @@ struct ContingentOptions {
   // is the thesis's geometric branching factor of one (§6.1.2); sample s > 0 of a transition waits
   // for the search's (s+1)-th round (docs/contingent.md, "Search").
   std::uint32_t samples = 1;
+  // Plan symbolically first, then refine (docs/contingent.md, "Symbolic first"): where no
+  // condition reads a value that effect applicators write, search with every action's symbolic
+  // effects only, then apply the plan's effect applicators along every branch; the plan stands
+  // if they all succeed, and the search with effect applicators runs otherwise.
+  bool symbolicFirst = true;
   // Called every `progressPeriod` seconds of search with the statistics so far (seconds and
   // beliefs set), for progress reports on long runs; none if empty.
   std::function<void(const ContingentStatistics&)> progress;
@@ -79,6 +84,14 @@ struct ContingentStatistics {
   std::size_t beliefs = 0;
   std::size_t worlds = 0;
   double seconds = 0.0;
+  // How the plan was found (ContingentOptions::symbolicFirst): by a symbolic plan whose effect
+  // applicators all succeeded, after `refinements` symbolic plans that failed; or by the search
+  // with effect applicators, after `refinements` failed ones (refinementFailed, the last failure
+  // in refinementFailure) or none tried.
+  bool refinedSymbolicPlan = false;
+  bool refinementFailed = false;
+  std::size_t refinements = 0;
+  std::string refinementFailure;
 };
 
 struct ContingentResult {
@@ -123,6 +136,10 @@ struct TreeValidation {
   bool valid = false;
   std::string message;  // first failure: "file:line:col: …" of the step, or "" when valid
   TreeMetrics metrics;
+  // When an effect applicator reported an action infeasible: the operator (variant) and the
+  // knowledge state it was applied in; otherwise -1.
+  int infeasibleOperator = -1;
+  Belief infeasibleIn;
 };
 
 // Checks every branch from the initial knowledge: each action's precondition is known to hold,

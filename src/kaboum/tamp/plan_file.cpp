@@ -95,6 +95,13 @@ nlohmann::json nodeJson(Solver& solver, const SolveResult& result, std::size_t i
           {"geometry", geometry}};
 }
 
+// How the search found the plan (ContingentOptions::symbolicFirst).
+std::string foundBy(const symbolic::ContingentStatistics& search) {
+  if (search.refinedSymbolicPlan) return "symbolic plan refined";
+  if (search.refinementFailed) return "integrated search after a failed refinement";
+  return "integrated search";
+}
+
 nlohmann::json finiteOrNull(double value) {
   return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
@@ -135,6 +142,9 @@ nlohmann::json statisticsJson(const SolveResult& result) {
           {"geometric_failures", geometric.failures},
           {"geometric_states", result.geometricStates},
           {"expanded", result.search.expanded},
+          {"found_by", foundBy(result.search)},
+          {"refinements", result.search.refinements},
+          {"refinement_failure", result.search.refinementFailure},
           {"knowledge_states", result.search.beliefs},
           {"plan_actions", actions},
           {"plan_waypoints", waypoints},
