@@ -79,8 +79,9 @@ void expectOccupantMovedFirst(const std::vector<std::string>& plan, const std::s
 
 }  // namespace
 
-// The premise of the scenario, in the scene's initial state: every item finds room in each of the
-// three free places and in none of the six occupied ones (not even on top of the occupant).
+// The premise of the scenario, in the scene's initial state: a bottle and a cereal box (the one
+// turned on its table) find room in each of the three free places and in none of the occupied ones
+// (not even on top of the occupant).
 TEST(Tables, APlaceHoldsOneItem) {
   const World& world = tables();
   const PlacementGeometry placements(world);
@@ -90,7 +91,7 @@ TEST(Tables, APlaceHoldsOneItem) {
       {"left-1", "bottle1"},  {"left-2", "cereal1"},  {"left-3", ""},
       {"front-1", "bottle2"}, {"front-2", ""},        {"front-3", "cereal2"},
       {"right-1", "cereal3"}, {"right-2", "bottle3"}, {"right-3", ""}};
-  for (const char* item : {"bottle1", "bottle2", "bottle3", "cereal1", "cereal2", "cereal3"}) {
+  for (const char* item : {"bottle1", "cereal3"}) {
     const std::size_t object = world.find(item).value().index;
     for (const auto& [place, occupant] : occupants) {
       if (occupant == item) continue;
