@@ -39,9 +39,10 @@ for problem in $problems; do
     field() { for run in $(seq "$runs"); do jq -r ".statistics.$1" "$out/$run.json"; done | median; }
     wall=$(cat "$out"/*.wall | median)
     mean=${published[$problem]%% *}
-    printf '| %s | %s | %s | %.3f | %.2f | %s | %s | %s | %s | %.0f |\n' "$problem" "$search" \
+    ratio=$(awk -v p="$mean" -v w="$wall" \
+      'BEGIN { r = p / (w > 0.005 ? w : 0.005); printf(r >= 10 ? "%.0f" : "%.1f", r) }')
+    printf '| %s | %s | %s | %.3f | %.2f | %s | %s | %s | %s | %s |\n' "$problem" "$search" \
       "$(field plan_actions)" "$(field total_seconds)" "$wall" "$(field motion_queries)" \
-      "$(field geometric_states)" "$(field expanded)" "${published[$problem]}" \
-      "$(awk -v p="$mean" -v w="$wall" 'BEGIN { print p / (w > 0.005 ? w : 0.005) }')"
+      "$(field geometric_states)" "$(field expanded)" "${published[$problem]}" "$ratio"
   done
 done
