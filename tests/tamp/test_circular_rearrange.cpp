@@ -14,6 +14,7 @@
 #include "kaboum/symbolic/contingent_parser.hpp"
 #include "kaboum/tamp/plan_file.hpp"
 #include "kaboum/tamp/plan_reader.hpp"
+#include "plan_actions.hpp"
 
 namespace kaboum::tamp {
 
@@ -33,16 +34,6 @@ const World& threeBottles() {
 
 symbolic::ContingentProblem problem() {
   return symbolic::loadContingent(example("domain.pddl"), example("problem-3.pddl"));
-}
-
-// The plan's actions by name, in execution order (the plan has no branch).
-std::vector<std::string> actions(const nlohmann::json& plan) {
-  std::vector<std::string> names;
-  for (int node = plan["root"]; plan["nodes"][node]["kind"] == "action";
-       node = plan["nodes"][node]["next"]) {
-    names.push_back(plan["nodes"][node]["action"]);
-  }
-  return names;
 }
 
 }  // namespace
@@ -80,7 +71,7 @@ TEST(CircularRearrange, ThreeBottlesAreRearrangedAndThePlanVerifies) {
       solver, result, {example("domain.pddl"), example("problem-3.pddl"), example("scene.yaml")});
   // Each bottle's goal location holds another bottle at first: some bottle is put down at least
   // twice, and each of the three at its goal.
-  const std::vector<std::string> plan = actions(file);
+  const std::vector<std::string> plan = planActions(file);
   const auto putDowns = std::count_if(plan.begin(), plan.end(), [](const std::string& action) {
     return action.starts_with("(putdown");
   });
@@ -109,7 +100,7 @@ TEST(CircularRearrangeCli, GeneratesSolvesWithHandoverAndVerifiesThePlanFile) {
   run = test::runCli(dir, "solve " + files + "--search gbfs --integrated --no-verify --quiet " +
                               "--plan-out " + plan + test::sharedCacheOption());
   ASSERT_EQ(run.exitCode, 0) << run.err;
-  const std::vector<std::string> steps = actions(nlohmann::json::parse(test::slurp(plan)));
+  const std::vector<std::string> steps = planActions(nlohmann::json::parse(test::slurp(plan)));
   EXPECT_TRUE(std::any_of(steps.begin(), steps.end(), [](const std::string& action) {
     return action.starts_with("(handover");
   })) << "a bottle changes hands in the air";

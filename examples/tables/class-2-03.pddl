@@ -1,0 +1,10 @@
+; Seed 004 Table I, Class II, replacing another object: a bottle to the place of a cereal box (front-3: cereal2).
+(define (problem tables-class-2-03)
+  (:domain tables)
+  (:objects mobile - robot bottle1 bottle2 bottle3 cereal1 cereal2 cereal3 - item
+            left-1 left-2 left-3 front-1 front-2 front-3 right-1 right-2 right-3 - place)
+  (:init (handempty mobile) (= (geometry) 0)
+         (at bottle1 left-1) (at cereal1 left-2) (at bottle2 front-1) (at cereal2 front-3)
+         (at cereal3 right-1) (at bottle3 right-2))
+  (:goal (and (at bottle3 front-3) [inside bottle3 front-3]
+              (handempty mobile))))
