@@ -351,6 +351,31 @@ TEST(ContingentEffects, WhereNoSymbolicPlanRefinesTheSearchWithEffectsTakesOver)
   EXPECT_EQ(none.statistics.refinements, 1u);
 }
 
+TEST(PlanTreeDepth, PlansLongerThanTheCallStackIsDeepAreValidatedAndMeasured) {
+  // Depth-first search may return plans of tens of thousands of actions; validating and measuring
+  // them must not recurse once per action.
+  const ContingentProblem contingent = parseTexts(
+      "(define (domain d) (:predicates (waited) (goal)) (:action wait :effect (waited)) "
+      "(:action finish :effect (goal)))",
+      "(define (problem p) (:domain d) (:goal (goal)))");
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  constexpr int kActions = 300000;
+  ASSERT_GE(task.findOperator("(wait)"), 0);
+  PlanTree plan;
+  plan.nodes.resize(kActions + 2);
+  for (int i = 0; i <= kActions; ++i) {
+    plan.nodes[i].kind = PlanTree::Node::Kind::Action;
+    plan.nodes[i].op = task.findOperator(i == kActions ? "(finish)" : "(wait)");
+    plan.nodes[i].next = i + 1;
+  }
+  plan.root = 0;
+  const TreeValidation validation = validatePlanTree(task, plan, "plan");
+  EXPECT_TRUE(validation.valid) << validation.message;
+  EXPECT_EQ(validation.metrics.actions, kActions + 1);
+  EXPECT_EQ(validation.metrics.depth, static_cast<std::size_t>(kActions) + 1);
+  EXPECT_EQ(validation.metrics.dagNodes, static_cast<std::size_t>(kActions) + 2);
+}
+
 TEST(ContingentEffects, APlanNamesItsSamplesAsNumbers) {
   const ContingentProblem contingent =
       parseTexts("(define (domain d) (:predicates (goal)) (:action finish :effect (goal)))",

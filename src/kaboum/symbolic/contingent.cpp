@@ -627,28 +627,42 @@ TreeMetrics measure(const PlanTree& plan) {
   };
   std::vector<Sizes> memo(plan.nodes.size());
   std::vector<char> done(plan.nodes.size(), 0);  // 0 new, 1 in progress (a loop), 2 done
-  const std::function<const Sizes&(int)> visit = [&](int index) -> const Sizes& {
-    if (done[index] != 0) return memo[index];
-    done[index] = 1;
+  // Post-order over an explicit stack: plans may be far longer than the call stack is deep. A
+  // child still in progress is an ancestor (a loop) and counts as empty.
+  std::vector<int> stack{plan.root};
+  while (!stack.empty()) {
+    const int index = stack.back();
     const PlanTree::Node& node = plan.nodes[index];
-    Sizes s;
+    if (done[index] == 2) {
+      stack.pop_back();
+      continue;
+    }
+    if (done[index] == 0) {
+      done[index] = 1;
+      for (const int child : {node.next, node.onFalse}) {
+        if (child >= 0 && node.kind != PlanTree::Node::Kind::Goal && done[child] == 0) {
+          stack.push_back(child);
+        }
+      }
+      continue;
+    }
+    Sizes& s = memo[index];
     if (node.kind == PlanTree::Node::Kind::Goal) {
       s.leaves = 1;
     } else if (node.kind == PlanTree::Node::Kind::Action) {
-      s = visit(node.next);
+      s = memo[node.next];
       s.actions += 1;
       s.depth += 1;
     } else {
-      const Sizes t = visit(node.next);
-      const Sizes& f = visit(node.onFalse);
+      const Sizes& t = memo[node.next];
+      const Sizes& f = memo[node.onFalse];
       s = {t.actions + f.actions, t.branches + f.branches + 1, t.leaves + f.leaves,
            std::max(t.depth, f.depth)};
     }
     done[index] = 2;
-    memo[index] = s;
-    return memo[index];
-  };
-  const Sizes& root = visit(plan.root);
+    stack.pop_back();
+  }
+  const Sizes& root = memo[plan.root];
   out.actions = root.actions;
   out.branches = root.branches;
   out.leaves = root.leaves;
@@ -827,53 +841,64 @@ TreeValidation validatePlanTree(KnowledgeTask& task, const PlanTree& plan,
   const auto at = [&](const PlanTree::Node& node, const std::string& what) {
     return locate(file, what, node.pos.line, node.pos.column);
   };
-  const std::function<std::string(int, const Belief&)> walk = [&](int index, const Belief& belief) {
-    const PlanTree::Node& node = plan.nodes[index];
-    if (onPath[index]) return at(node, "the plan loops back to an earlier step");
-    if (!checked.insert({index, belief}).second) return std::string();
-    onPath[index] = 1;
+  // Follows a sequence of actions in a loop (plans may be far longer than the call stack is
+  // deep) and recurses at branches.
+  const std::function<std::string(int, Belief)> walk = [&](int index, Belief belief) {
+    std::vector<int> path;  // the nodes this call marked on the path
     std::string failure;
-    if (node.kind == PlanTree::Node::Kind::Goal) {
-      if (!task.isGoal(belief)) failure = at(node, "this branch ends without knowing the goal");
-    } else if (node.kind == PlanTree::Node::Kind::Action) {
-      const std::string name = "(" + task.task().operators[node.op].name + ")";
-      Belief next;
-      const std::vector<int>& variants = task.variants(node.op);
-      const auto op = std::find_if(variants.begin(), variants.end(),
-                                   [&](int v) { return task.applicable(v, belief); });
-      if (op == variants.end()) {
-        failure = at(node, "precondition of " + name + " is not known to hold");
-      } else if (!task.apply(*op, belief, next, node.sample)) {
-        failure = at(node, "an attachment reports " + name + " infeasible");
-        out.infeasibleOperator = *op;
-        out.infeasibleIn = belief;
-      } else {
-        failure = walk(node.next, next);
+    while (failure.empty()) {
+      const PlanTree::Node& node = plan.nodes[index];
+      if (onPath[index]) {
+        failure = at(node, "the plan loops back to an earlier step");
+        break;
       }
-    } else if (node.fluent >= 0) {
-      if (!task.knowsValue(node.fluent, belief)) {
-        failure = at(node, "branch on " + task.task().fluentNames[node.fluent] +
-                               ", whose value no sensing action observed");
-      } else {
-        Belief equal;
-        Belief other;
-        task.splitValue(node.fluent, node.value, belief, equal, other);
-        if (!equal.empty()) failure = walk(node.next, equal);
-        if (failure.empty() && !other.empty()) failure = walk(node.onFalse, other);
+      if (!checked.insert({index, belief}).second) break;
+      onPath[index] = 1;
+      path.push_back(index);
+      if (node.kind == PlanTree::Node::Kind::Goal) {
+        if (!task.isGoal(belief)) failure = at(node, "this branch ends without knowing the goal");
+        break;
       }
-    } else {
-      const std::string& atom = task.task().atomNames[node.atom];
-      if (!task.knowsWhether(node.atom, belief)) {
-        failure = at(node, "branch on " + atom + ", whose value no sensing action observed");
+      if (node.kind == PlanTree::Node::Kind::Action) {
+        const std::string name = "(" + task.task().operators[node.op].name + ")";
+        Belief next;
+        const std::vector<int>& variants = task.variants(node.op);
+        const auto op = std::find_if(variants.begin(), variants.end(),
+                                     [&](int v) { return task.applicable(v, belief); });
+        if (op == variants.end()) {
+          failure = at(node, "precondition of " + name + " is not known to hold");
+        } else if (!task.apply(*op, belief, next, node.sample)) {
+          failure = at(node, "an attachment reports " + name + " infeasible");
+          out.infeasibleOperator = *op;
+          out.infeasibleIn = belief;
+        } else {
+          index = node.next;
+          belief = std::move(next);
+        }
+        continue;
+      }
+      Belief onTrue;
+      Belief onFalse;
+      if (node.fluent >= 0) {
+        if (!task.knowsValue(node.fluent, belief)) {
+          failure = at(node, "branch on " + task.task().fluentNames[node.fluent] +
+                                 ", whose value no sensing action observed");
+          break;
+        }
+        task.splitValue(node.fluent, node.value, belief, onTrue, onFalse);
       } else {
-        Belief onTrue;
-        Belief onFalse;
+        if (!task.knowsWhether(node.atom, belief)) {
+          failure = at(node, "branch on " + task.task().atomNames[node.atom] +
+                                 ", whose value no sensing action observed");
+          break;
+        }
         task.split(node.atom, belief, onTrue, onFalse);
-        if (!onTrue.empty()) failure = walk(node.next, onTrue);
-        if (failure.empty() && !onFalse.empty()) failure = walk(node.onFalse, onFalse);
       }
+      if (!onTrue.empty()) failure = walk(node.next, std::move(onTrue));
+      if (failure.empty() && !onFalse.empty()) failure = walk(node.onFalse, std::move(onFalse));
+      break;
     }
-    onPath[index] = 0;
+    for (const int marked : path) onPath[marked] = 0;
     return failure;
   };
   out.message = walk(plan.root, task.initialBelief());
