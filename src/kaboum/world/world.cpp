@@ -539,19 +539,16 @@ std::optional<Collision> World::firstCollisionOfRobot(const GeometricState& stat
   if (predicates_ != nullptr) {
     return predicates_->firstCollisionOfRobot(state, scratch, robot, against);
   }
-  const auto partyOf = [&](std::size_t r, std::size_t part) {
-    return this->partyOf(state, r, part);
-  };
   const RobotCollisionModel& model = robots_[robot].collision;
   const std::span<const Attachment> held = state.robots[robot].held;
   const std::span<const Pose> poses = scratch.linkPoses[robot];
   if (const auto parts = model.firstSelfCollision(poses, held, 2 * margin)) {
-    return Collision{partyOf(robot, parts->first), partyOf(robot, parts->second)};
+    return Collision{partyOf(state, robot, parts->first), partyOf(state, robot, parts->second)};
   }
   for (std::size_t i = 0; i < model.partCount(held); ++i) {
     if (const auto hit = scene_.firstCollision(state.placements, *model.part(i, held).body,
                                                model.partPose(i, poses, held), margin)) {
-      return Collision{partyOf(robot, i), {Party::Kind::Object, *hit}};
+      return Collision{partyOf(state, robot, i), {Party::Kind::Object, *hit}};
     }
   }
   for (std::size_t other = 0; other < robots_.size(); ++other) {
@@ -564,7 +561,7 @@ std::optional<Collision> World::firstCollisionOfRobot(const GeometricState& stat
         if (bodiesCollide(*model.part(i, held).body, pose, *otherModel.part(j, otherHeld).body,
                           otherModel.partPose(j, scratch.linkPoses[other], otherHeld),
                           2 * margin)) {
-          return Collision{partyOf(robot, i), partyOf(other, j)};
+          return Collision{partyOf(state, robot, i), partyOf(state, other, j)};
         }
       }
     }
