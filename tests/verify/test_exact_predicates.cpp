@@ -3,15 +3,20 @@
 // at the scene's ε = 5 mm): on random configurations the bounded predicates never call free a
 // state the exact ones call colliding (the bounding pieces contain the meshes), and just outside
 // the exact contact the bounded ones still reject states the exact ones call free — within ε of
-// a collision.
+// a collision. With exact predicates installed, motions are checked at samples 1° apart.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <memory>
 #include <random>
 
 #include "../support/test_support.hpp"
 #include "kaboum/io/scene_file.hpp"
 #include "kaboum/kinematics/random_configuration.hpp"
+#include "kaboum/motion/motion_planner.hpp"
+#include "kaboum/motion/world_checkers.hpp"
 #include "kaboum/testing/data_paths.hpp"
 #include "kaboum/verify/exact_predicates.hpp"
 
@@ -95,6 +100,44 @@ TEST(ExactPredicates, NearAnExactContactTheBoundedPredicatesRejectAFreeState) {
     if (collides(world, nullptr, nearContact)) ++found;
   }
   EXPECT_GT(found, 0);
+}
+
+TEST(ExactPredicates, MotionsAreCheckedAtSamplesOneDegreeApartInEitherDirection) {
+  World& world = pickAndPlaceWorld();
+  const ExactPredicates exact(world);
+  world.usePredicates(&exact);
+  const motion::MotionGroup group(world, world.initialState(), {0});
+  motion::CheckStatistics statistics;
+  const std::unique_ptr<motion::MotionValidator> motions =
+      motion::motionValidator(group, 0.005, &statistics);
+  ASSERT_NE(dynamic_cast<motion::DiscreteMotionValidator*>(motions.get()), nullptr);
+  std::mt19937_64 rng(3);
+  std::size_t rejected = 0;
+  constexpr int kPairs = 30;
+  for (int pair = 0; pair < kPairs; ++pair) {
+    const auto a = motion::randomFreeConfiguration(group, 0.0, rng);
+    const auto b = motion::randomFreeConfiguration(group, 0.0, rng);
+    ASSERT_TRUE(a && b);
+    const bool valid = motions->isValid(*a, *b);
+    EXPECT_EQ(motions->isValid(*b, *a), valid) << "pair " << pair;
+    // The samples of the check: at most 1° (the scene's joint_step) apart in every joint.
+    double largest = 0;
+    for (std::size_t i = 0; i < a->size(); ++i)
+      largest = std::max(largest, std::abs((*b)[i] - (*a)[i]));
+    const int intervals =
+        static_cast<int>(std::ceil(largest / world.description().settings.jointStep));
+    bool sampleCollides = false;
+    for (int k = 1; k < intervals && !sampleCollides; ++k) {
+      sampleCollides =
+          world.firstCollision(stateAt(world, lerp(*a, *b, double(k) / intervals))).has_value();
+    }
+    EXPECT_EQ(valid, !sampleCollides) << "pair " << pair;
+    rejected += valid ? 0 : 1;
+  }
+  world.usePredicates(nullptr);
+  EXPECT_GT(rejected, 0U);
+  EXPECT_EQ(statistics.motionChecks, 2U * kPairs);
+  EXPECT_EQ(statistics.motionPositives, 2 * rejected);
 }
 
 }  // namespace kaboum::verify
