@@ -31,9 +31,10 @@ void addSceneLoadOptions(CLI::App& command, SceneLoadOptions& options) {
   noCache->excludes(cacheDir);
   command.add_option("--threads", options.threads,
                      "Threads decomposing the scene's meshes (default: the hardware's)");
-  command.add_option("--epsilon", options.epsilon,
-                     "Approximation bound of the bounding convex decomposition, overriding the "
-                     "scene's: metres (0.005) or a percentage of each body's diagonal (1%)");
+  command.add_option_function<std::string>(
+      "--epsilon", [&options](const std::string& text) { options.epsilon = text; },
+      "Approximation bound of the bounding convex decomposition, overriding the "
+      "scene's: metres (0.005) or a percentage of each body's diagonal (1%)");
 }
 
 void applyEpsilonOption(const std::string& text, io::SceneSettings& settings) {
@@ -70,7 +71,7 @@ world::World loadWorld(const std::string& sceneFile, const SceneLoadOptions& opt
   worldOptions.cacheDirectory = cacheDirectory(options);
   worldOptions.threads = options.threads;
   io::SceneDescription scene = io::readSceneFile(sceneFile);
-  if (!options.epsilon.empty()) applyEpsilonOption(options.epsilon, scene.settings);
+  if (options.epsilon) applyEpsilonOption(*options.epsilon, scene.settings);
   return world::World(std::move(scene), worldOptions);
 }
 

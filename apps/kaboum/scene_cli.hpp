@@ -16,9 +16,9 @@ namespace kaboum::cli {
 
 struct SceneLoadOptions {
   bool noCache = false;
-  std::string cacheDirectory;  // empty: defaultCacheDirectory()
-  unsigned threads = 0;        // decomposing meshes; 0: the hardware's
-  std::string epsilon;         // --epsilon as given (metres or N%); empty: the scene file's
+  std::string cacheDirectory;          // empty: defaultCacheDirectory()
+  unsigned threads = 0;                // decomposing meshes; 0: the hardware's
+  std::optional<std::string> epsilon;  // --epsilon as given (metres or N%); none: the scene's
 };
 
 // Adds --no-cache, --cache-dir DIR, --threads N and --epsilon E to `command`.

@@ -74,7 +74,7 @@ TEST(ExactGeometry, BadOptionValuesGiveOneLineAndExitCodeTwo) {
   test::ScratchDir dir;
   for (const std::string option :
        {"--epsilon -0.01", "--epsilon 0", "--epsilon 0%", "--epsilon abc", "--epsilon 150%",
-        "--epsilon 1mm", "--geometry convex"}) {
+        "--epsilon 1mm", "--epsilon ''", "--geometry convex"}) {
     const test::CliResult run = test::runCli(dir, "solve " + exampleFiles() + " " + option);
     EXPECT_EQ(run.exitCode, 2) << option;
     EXPECT_EQ(test::lineCount(run.err), 1U) << run.err;
