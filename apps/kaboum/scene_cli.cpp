@@ -1,5 +1,6 @@
 #include "scene_cli.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <numbers>
@@ -30,6 +31,26 @@ void addSceneLoadOptions(CLI::App& command, SceneLoadOptions& options) {
   noCache->excludes(cacheDir);
   command.add_option("--threads", options.threads,
                      "Threads decomposing the scene's meshes (default: the hardware's)");
+  command.add_option_function<std::string>(
+      "--epsilon", [&options](const std::string& text) { options.epsilon = text; },
+      "Approximation bound of the bounding convex decomposition, overriding the "
+      "scene's: metres (0.005) or a percentage of each body's diagonal (1%)");
+}
+
+void applyEpsilonOption(const std::string& text, io::SceneSettings& settings) {
+  const bool relative = text.ends_with('%');
+  const std::string_view number(text.data(), text.size() - (relative ? 1 : 0));
+  double value = 0;
+  const auto [end, error] = std::from_chars(number.data(), number.data() + number.size(), value);
+  if (error != std::errc() || end != number.data() + number.size() || !std::isfinite(value) ||
+      !(value > 0) || (relative && value > 100)) {
+    throw InputError(
+        "--epsilon: expected a positive distance in metres (0.005) or a percentage of each "
+        "body's diagonal above 0 and at most 100% (1%), got '" +
+        text + "'");
+  }
+  settings.epsilonRelative = relative;
+  settings.epsilon = relative ? value / 100 : value;
 }
 
 std::optional<std::filesystem::path> defaultCacheDirectory() {
@@ -49,7 +70,9 @@ world::World loadWorld(const std::string& sceneFile, const SceneLoadOptions& opt
   world::WorldOptions worldOptions;
   worldOptions.cacheDirectory = cacheDirectory(options);
   worldOptions.threads = options.threads;
-  return world::World(io::readSceneFile(sceneFile), worldOptions);
+  io::SceneDescription scene = io::readSceneFile(sceneFile);
+  if (options.epsilon) applyEpsilonOption(*options.epsilon, scene.settings);
+  return world::World(std::move(scene), worldOptions);
 }
 
 void addVerifyStepOptions(CLI::App& command, VerifyStepOptions& options) {

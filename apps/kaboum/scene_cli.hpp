@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "kaboum/io/scene_file.hpp"
 #include "kaboum/verify/path_verifier.hpp"
 #include "kaboum/world/world.hpp"
 
@@ -15,11 +16,12 @@ namespace kaboum::cli {
 
 struct SceneLoadOptions {
   bool noCache = false;
-  std::string cacheDirectory;  // empty: defaultCacheDirectory()
-  unsigned threads = 0;        // decomposing meshes; 0: the hardware's
+  std::string cacheDirectory;          // empty: defaultCacheDirectory()
+  unsigned threads = 0;                // decomposing meshes; 0: the hardware's
+  std::optional<std::string> epsilon;  // --epsilon as given (metres or N%); none: the scene's
 };
 
-// Adds --no-cache, --cache-dir DIR and --threads N to `command`.
+// Adds --no-cache, --cache-dir DIR, --threads N and --epsilon E to `command`.
 void addSceneLoadOptions(CLI::App& command, SceneLoadOptions& options);
 
 // $KABOUM_CACHE_DIR, else $XDG_CACHE_HOME/kaboum, else $HOME/.cache/kaboum (variables that are
@@ -30,8 +32,14 @@ std::optional<std::filesystem::path> defaultCacheDirectory();
 // default.
 std::optional<std::filesystem::path> cacheDirectory(const SceneLoadOptions& options);
 
+// Sets the ε of the bounded predicates in `settings` from `text` as the scene file states it: a
+// distance in metres ("0.005") or a percentage of each body's bounding-box diagonal ("1%", at
+// most 100%). Throws InputError with one line naming --epsilon for anything else (a negative or
+// zero value, not a number).
+void applyEpsilonOption(const std::string& text, io::SceneSettings& settings);
+
 // Reads the scene file and builds its World with decompositions cached as `options` say, on
-// `options.threads` threads (WorldOptions::threads). Throws
+// `options.threads` threads (WorldOptions::threads), at the ε of --epsilon when given. Throws
 // InputError for a bad file, a failed load-time check or a cache directory that cannot be created.
 world::World loadWorld(const std::string& sceneFile, const SceneLoadOptions& options);
 

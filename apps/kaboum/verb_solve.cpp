@@ -11,6 +11,7 @@
 #include "kaboum/core/error.hpp"
 #include "kaboum/symbolic/heuristic.hpp"
 #include "kaboum/tamp/plan_file.hpp"
+#include "kaboum/verify/exact_predicates.hpp"
 #include "scene_cli.hpp"
 #include "verb.hpp"
 
@@ -25,6 +26,7 @@ struct Options {
   double motionTimeLimit = 2;
   double memoryLimitMegabytes = 8000;
   std::string placement = "random";
+  std::string geometry = "bounded";
   std::string planOut;
   bool json = false;
   bool quiet = false;
@@ -39,8 +41,15 @@ const std::map<std::string, world::SearchStrategy>& placementStrategies() {
   return strategies;
 }
 
-void printSummary(const tamp::SolveResult& result) {
+// The values of --geometry: the collision predicates of the World's state queries.
+const std::vector<std::string>& geometryModes() {
+  static const std::vector<std::string> modes{"bounded", "exact"};
+  return modes;
+}
+
+void printSummary(const world::World& world, const tamp::SolveResult& result) {
   const tamp::GeometricStatistics& geometric = result.geometric;
+  const motion::CheckStatistics& checks = geometric.checks;
   const symbolic::TreeMetrics metrics = symbolic::measure(result.plan);
   std::cerr << "kaboum solve: " << toString(result.status);
   if (result.status == PlannerStatus::Solved) {
@@ -48,12 +57,14 @@ void printSummary(const tamp::SolveResult& result) {
   }
   std::cerr << fmt::format(
       "; {:.3f} s (symbolic {:.3f} s, geometric {:.3f} s: {} IK sample(s) {:.3f} s, {} motion "
-      "query(ies) {:.3f} s, {} state and {} motion check(s)); {} geometric state(s), {} "
-      "expanded\n",
+      "query(ies) {:.3f} s, {} state and {} motion check(s) {:.3f} s, {} positive); {} geometric "
+      "state(s), {} expanded; {} predicates, epsilon {}\n",
       result.seconds, result.symbolicSeconds, result.geometricSeconds, geometric.ikCalls,
-      geometric.ikSeconds, geometric.motionQueries, geometric.motionSeconds,
-      geometric.checks.stateChecks, geometric.checks.motionChecks, result.geometricStates,
-      result.search.expanded);
+      geometric.ikSeconds, geometric.motionQueries, geometric.motionSeconds, checks.stateChecks,
+      checks.motionChecks, checks.stateSeconds + checks.motionSeconds,
+      checks.statePositives + checks.motionPositives, result.geometricStates,
+      result.search.expanded, world.predicates() != nullptr ? "exact" : "bounded",
+      io::epsilonSetting(world.description().settings));
   if (result.search.refinedSymbolicPlan) {
     std::cerr << "kaboum solve: the symbolic plan refined with geometry at every step\n";
   } else if (result.search.refinementFailed) {
@@ -90,7 +101,12 @@ int run(Options& options) {
       symbolic::loadContingent(options.files.domain, options.files.problem);
   printWarnings(problem.domain.warnings);
   printWarnings(problem.problem.warnings);
-  const world::World world = loadWorld(options.files.scene, options.load);
+  world::World world = loadWorld(options.files.scene, options.load);
+  std::unique_ptr<verify::ExactPredicates> exact;
+  if (options.geometry == "exact") {
+    exact = std::make_unique<verify::ExactPredicates>(world);
+    world.usePredicates(exact.get());
+  }
   const tamp::Solver* progressOf = nullptr;  // set once the solver exists
   if (!options.quiet) {
     options.solve.search.progress = [&progressOf](const symbolic::ContingentStatistics& search) {
@@ -122,7 +138,7 @@ int run(Options& options) {
     const std::string tree = symbolic::formatPlanTree(solver.task(), result.plan);
     std::cout << tree << (tree.ends_with('\n') ? "" : "\n");
   }
-  if (!options.quiet || !solved) printSummary(result);
+  if (!options.quiet || !solved) printSummary(world, result);
   return solved ? 0 : 1;
 }
 
@@ -184,6 +200,13 @@ VerbRunner setup(CLI::App& command) {
                   "How putDown samples a location for a placement (seed 003 Fig. 2): random, "
                   "quadtree (the centre first: the same placement in the same state) or linear")
       ->check(CLI::IsMember(placementStrategies()))
+      ->capture_default_str();
+  command
+      .add_option("--geometry", options->geometry,
+                  "Collision predicates: bounded (on the bounding convex decomposition, motions "
+                  "certified by swept volumes) or exact (FCL on the original meshes, motions "
+                  "checked at the scene's joint_step; thesis Proposition 4)")
+      ->check(CLI::IsMember(geometryModes()))
       ->capture_default_str();
   command
       .add_option("--grasp-samples", options->solve.geometry.graspSamples,

@@ -965,6 +965,11 @@ SceneDescription parseSceneText(const std::string& text, const std::string& sour
   return SceneReader(sourceName, baseDir).read(root);
 }
 
+std::string epsilonSetting(const SceneSettings& settings) {
+  return settings.epsilonRelative ? fmt::format("{:g}%", 100 * settings.epsilon)
+                                  : fmt::format("{:g}", settings.epsilon);
+}
+
 SceneDescription readSceneFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in || fs::is_directory(path)) throw InputError(locate(path, "cannot open file"));

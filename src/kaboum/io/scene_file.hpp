@@ -184,6 +184,10 @@ struct SceneSettings {
   SourceLocation source;
 };
 
+// The ε of `settings` as a scene file states it: "1%" (of each body's diagonal) or "0.005"
+// (metres).
+std::string epsilonSetting(const SceneSettings& settings);
+
 struct SceneDescription {
   SceneSettings settings;
   std::vector<RobotSpec> robots;

@@ -109,18 +109,18 @@ MotionResult planCartesian(const MotionGroup& group, ToolKinematics& tool,
   if (ends.status != PlannerStatus::Solved) return query.finish(ends.status, ends.problem);
   statistics.sweepEpsilon = ends.epsilon;
   WorldStateChecker states(group, ends.epsilon, &statistics.checks);
-  SweptMotionValidator motions(group, ends.epsilon, &statistics.checks);
+  const std::unique_ptr<MotionValidator> motions =
+      motionValidator(group, ends.epsilon, &statistics.checks);
   for (std::size_t i = 1; i < result.path.size(); ++i) {
     if (const auto collision = states.firstCollision(result.path[i])) {
       return query.finish(PlannerStatus::Unsolvable,
                           fmt::format("at {:.0f}% of the line: {}", 100 * parameters[i],
                                       group.world().describe(*collision)));
     }
-    if (!motions.isValid(result.path[i - 1], result.path[i])) {
-      return query.finish(
-          PlannerStatus::Unsolvable,
-          fmt::format("the swept volume between {:.0f}% and {:.0f}% of the line collides",
-                      100 * parameters[i - 1], 100 * parameters[i]));
+    if (!motions->isValid(result.path[i - 1], result.path[i])) {
+      return query.finish(PlannerStatus::Unsolvable,
+                          fmt::format("the motion between {:.0f}% and {:.0f}% of the line collides",
+                                      100 * parameters[i - 1], 100 * parameters[i]));
     }
   }
   statistics.plannedWaypoints = result.path.size();

@@ -138,6 +138,16 @@ bool certified(const Waypoints& path, MotionValidator& motions) {
 
 }  // namespace
 
+std::unique_ptr<MotionValidator> motionValidator(const MotionGroup& group, double sweepEpsilon,
+                                                 CheckStatistics* statistics) {
+  if (group.world().predicates() != nullptr) {
+    const SceneSettings& settings = group.world().description().settings;
+    return std::make_unique<DiscreteMotionValidator>(group, settings.jointStep, settings.toolStep,
+                                                     statistics);
+  }
+  return std::make_unique<SweptMotionValidator>(group, sweepEpsilon, statistics);
+}
+
 double sweepEpsilonOf(const MotionGroup& group, const MotionOptions& options) {
   return options.sweepEpsilon.value_or(group.world().description().settings.sweepEpsilon);
 }
@@ -219,8 +229,9 @@ MotionResult planMotion(const MotionGroup& group, std::span<const double> start,
   const double epsilon = ends.epsilon;
   statistics.sweepEpsilon = epsilon;
   WorldStateChecker states(group, epsilon, &statistics.checks);
-  SweptMotionValidator sweeps(group, epsilon, &statistics.checks);
-  RememberedVerdicts motions(sweeps, group.dimension());
+  const std::unique_ptr<MotionValidator> certifier =
+      motionValidator(group, epsilon, &statistics.checks);
+  RememberedVerdicts motions(*certifier, group.dimension());
   if (motions.isValid(start, goal)) {
     statistics.straight = true;
     result.path = {{start.begin(), start.end()}, {goal.begin(), goal.end()}};
@@ -229,7 +240,7 @@ MotionResult planMotion(const MotionGroup& group, std::span<const double> start,
     return query.finish(PlannerStatus::Solved);
   }
   const Clock::time_point planning = Clock::now();
-  SamplingResult sampled = planWithOmpl(group, states, sweeps, start, goal, options,
+  SamplingResult sampled = planWithOmpl(group, states, *certifier, start, goal, options,
                                         options.timeLimit - query.elapsedSeconds());
   statistics.planningSeconds = secondsSince(planning);
   if (sampled.status != PlannerStatus::Solved) {

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <random>
 #include <span>
@@ -91,6 +92,14 @@ const std::vector<std::string>& motionPlannerNames();
 // planner name.
 MotionResult planMotion(const MotionGroup& group, std::span<const double> start,
                         std::span<const double> goal, const MotionOptions& options = {});
+
+// The validator that certifies a query's straight motions: swept volumes bounded within
+// `sweepEpsilon` (SweptMotionValidator), or, when the group's World uses exact predicates
+// (World::usePredicates), samples at most the scene's joint_step apart in every revolute joint
+// (default 1°, the Bimanual Assembly benchmark's resolution) and its tool_step in every prismatic
+// one (DiscreteMotionValidator). Counts into `statistics` when given.
+std::unique_ptr<MotionValidator> motionValidator(const MotionGroup& group, double sweepEpsilon,
+                                                 CheckStatistics* statistics);
 
 // The sweep ε of a query: the option's, or the scene's.
 double sweepEpsilonOf(const MotionGroup& group, const MotionOptions& options);

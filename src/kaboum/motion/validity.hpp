@@ -25,12 +25,27 @@ class MotionValidator {
   [[nodiscard]] virtual bool isValid(std::span<const double> from, std::span<const double> to) = 0;
 };
 
-// Counts and seconds of the checks of one planning query.
+// Counts and seconds of the checks of one planning query; the positives are the checks that found
+// a collision (Table 6.7's positive share: positives / checks).
 struct CheckStatistics {
   std::size_t stateChecks = 0;
+  std::size_t statePositives = 0;
   double stateSeconds = 0;
   std::size_t motionChecks = 0;
+  std::size_t motionPositives = 0;
   double motionSeconds = 0;
+
+  CheckStatistics& operator+=(const CheckStatistics& other);
 };
+
+inline CheckStatistics& CheckStatistics::operator+=(const CheckStatistics& other) {
+  stateChecks += other.stateChecks;
+  statePositives += other.statePositives;
+  stateSeconds += other.stateSeconds;
+  motionChecks += other.motionChecks;
+  motionPositives += other.motionPositives;
+  motionSeconds += other.motionSeconds;
+  return *this;
+}
 
 }  // namespace kaboum::motion

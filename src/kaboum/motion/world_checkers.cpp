@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <stdexcept>
 
 namespace kaboum::motion {
 
@@ -11,15 +13,21 @@ namespace {
 class CheckTimer {
  public:
   CheckTimer(CheckStatistics* statistics, std::size_t CheckStatistics::*count,
-             double CheckStatistics::*seconds)
-      : statistics_(statistics), count_(count), seconds_(seconds) {
+             std::size_t CheckStatistics::*positives, double CheckStatistics::*seconds)
+      : statistics_(statistics), count_(count), positives_(positives), seconds_(seconds) {
     if (statistics_ != nullptr) start_ = std::chrono::steady_clock::now();
   }
   CheckTimer(const CheckTimer&) = delete;
   CheckTimer& operator=(const CheckTimer&) = delete;
+  // The check's verdict: whether it found a collision. Returns `valid`.
+  bool verdict(bool valid) {
+    positive_ = !valid;
+    return valid;
+  }
   ~CheckTimer() {
     if (statistics_ == nullptr) return;
     ++(statistics_->*count_);
+    if (positive_) ++(statistics_->*positives_);
     statistics_->*seconds_ +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   }
@@ -27,6 +35,8 @@ class CheckTimer {
  private:
   CheckStatistics* statistics_;
   std::size_t CheckStatistics::*count_;
+  std::size_t CheckStatistics::*positives_;
+  bool positive_ = false;
   double CheckStatistics::*seconds_;
   std::chrono::steady_clock::time_point start_;
 };
@@ -56,8 +66,8 @@ bool WorldStateChecker::isValid(std::span<const double> q) {
 }
 
 std::optional<Collision> WorldStateChecker::firstCollision(std::span<const double> q) {
-  const CheckTimer timer(statistics_, &CheckStatistics::stateChecks,
-                         &CheckStatistics::stateSeconds);
+  CheckTimer timer(statistics_, &CheckStatistics::stateChecks, &CheckStatistics::statePositives,
+                   &CheckStatistics::stateSeconds);
   const World& world = group_.world();
   group_.assign(q, state_);
   for (const std::size_t r : group_.robots()) {
@@ -67,6 +77,7 @@ std::optional<Collision> WorldStateChecker::firstCollision(std::span<const doubl
   for (std::size_t k = 0; k < group_.robots().size(); ++k) {
     if (auto collision = world.firstCollisionOfRobot(state_, scratch_, group_.robots()[k],
                                                      against_[k], clearance_)) {
+      timer.verdict(false);
       return collision;
     }
   }
@@ -91,8 +102,12 @@ SweptMotionValidator::SweptMotionValidator(const MotionGroup& group, double swee
 }
 
 bool SweptMotionValidator::isValid(std::span<const double> from, std::span<const double> to) {
-  const CheckTimer timer(statistics_, &CheckStatistics::motionChecks,
-                         &CheckStatistics::motionSeconds);
+  CheckTimer timer(statistics_, &CheckStatistics::motionChecks, &CheckStatistics::motionPositives,
+                   &CheckStatistics::motionSeconds);
+  return timer.verdict(certify(from, to));
+}
+
+bool SweptMotionValidator::certify(std::span<const double> from, std::span<const double> to) {
   // One direction for both (lexicographically smaller end first), so that the verdict on a
   // segment does not depend on the direction a planner checks it in.
   if (std::lexicographical_compare(to.begin(), to.end(), from.begin(), from.end())) {
@@ -141,6 +156,40 @@ bool SweptMotionValidator::isValid(std::span<const double> from, std::span<const
     }
   }
   return true;
+}
+
+DiscreteMotionValidator::DiscreteMotionValidator(const MotionGroup& group, double jointStep,
+                                                 double prismaticStep, CheckStatistics* statistics)
+    : statistics_(statistics), samples_(group, 0.0), sample_(group.dimension()) {
+  if (!(jointStep > 0) || !(prismaticStep > 0)) {
+    throw std::invalid_argument("the steps of a discrete motion check must be positive");
+  }
+  for (std::size_t i = 0; i < group.dimension(); ++i) {
+    const MotionGroup::Coordinate coordinate = group.coordinate(i);
+    const Joint& joint = group.world().robots()[coordinate.robot].collision.model().variableJoint(
+        coordinate.variable);
+    steps_.push_back(joint.type == JointType::Prismatic ? prismaticStep : jointStep);
+  }
+}
+
+bool DiscreteMotionValidator::isValid(std::span<const double> from, std::span<const double> to) {
+  CheckTimer timer(statistics_, &CheckStatistics::motionChecks, &CheckStatistics::motionPositives,
+                   &CheckStatistics::motionSeconds);
+  // The same samples in either direction (lexicographically smaller end first).
+  if (std::lexicographical_compare(to.begin(), to.end(), from.begin(), from.end())) {
+    std::swap(from, to);
+  }
+  double intervals = 1;
+  for (std::size_t i = 0; i < steps_.size(); ++i) {
+    intervals = std::max(intervals, std::ceil(std::abs(to[i] - from[i]) / steps_[i]));
+  }
+  const auto count = static_cast<std::size_t>(intervals);
+  for (std::size_t k = 1; k < count; ++k) {
+    const double t = static_cast<double>(k) / intervals;
+    for (std::size_t i = 0; i < sample_.size(); ++i) sample_[i] = from[i] + t * (to[i] - from[i]);
+    if (!samples_.isValid(sample_)) return timer.verdict(false);
+  }
+  return timer.verdict(true);
 }
 
 }  // namespace kaboum::motion

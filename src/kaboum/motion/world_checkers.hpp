@@ -58,6 +58,8 @@ class SweptMotionValidator final : public MotionValidator {
   [[nodiscard]] double sweepEpsilon() const { return epsilon_; }
 
  private:
+  [[nodiscard]] bool certify(std::span<const double> from, std::span<const double> to);
+
   // Configurations checked for a plain collision before the sweep (fractions of the motion).
   static constexpr std::array<double, 4> kPrefilterSamples{1.0, 0.5, 0.25, 0.75};
 
@@ -69,6 +71,28 @@ class SweptMotionValidator final : public MotionValidator {
   // One sweep per robot of the world (fixed robots sweep their constant configuration).
   std::vector<std::unique_ptr<RobotSweep>> sweeps_;
   std::vector<int> movingIndex_;  // per world robot: its index among the moving robots, or -1
+};
+
+// Checks the straight motion of every moving robot at discrete samples, for a World whose state
+// queries use exact predicates (World::usePredicates; thesis §6.2.3, Proposition 4): swept volumes
+// exist only for convex pieces. Between consecutive samples no revolute or continuous coordinate
+// moves more than `jointStep` radians and no prismatic one more than `prismaticStep` metres; a
+// motion is valid when every sample between its ends is collision-free — what happens between
+// samples is not checked. The verdict does not depend on the direction of the motion.
+class DiscreteMotionValidator final : public MotionValidator {
+ public:
+  // Holds a reference: `group` must outlive the validator. Counts into `statistics` when given.
+  // Throws std::invalid_argument for a step that is not positive.
+  DiscreteMotionValidator(const MotionGroup& group, double jointStep, double prismaticStep,
+                          CheckStatistics* statistics = nullptr);
+
+  [[nodiscard]] bool isValid(std::span<const double> from, std::span<const double> to) override;
+
+ private:
+  CheckStatistics* statistics_;
+  WorldStateChecker samples_;  // at clearance 0
+  std::vector<double> sample_;
+  std::vector<double> steps_;  // per coordinate: the largest motion between samples
 };
 
 }  // namespace kaboum::motion

@@ -248,10 +248,7 @@ void GeometricAttachments::record(const motion::MotionResult& result) {
   const motion::MotionStatistics& query = result.statistics;
   ++statistics_.motionQueries;
   statistics_.motionSeconds += query.totalSeconds;
-  statistics_.checks.stateChecks += query.checks.stateChecks;
-  statistics_.checks.stateSeconds += query.checks.stateSeconds;
-  statistics_.checks.motionChecks += query.checks.motionChecks;
-  statistics_.checks.motionSeconds += query.checks.motionSeconds;
+  statistics_.checks += query.checks;
 }
 
 bool GeometricAttachments::finish(ActionGeometry geometry, const GeometricState& reached,

@@ -108,7 +108,7 @@ nlohmann::json finiteOrNull(double value) {
 
 }  // namespace
 
-nlohmann::json statisticsJson(const SolveResult& result) {
+nlohmann::json statisticsJson(const World& world, const SolveResult& result) {
   const GeometricStatistics& geometric = result.geometric;
   std::size_t waypoints = 0;
   std::size_t actions = 0;
@@ -127,7 +127,12 @@ nlohmann::json statisticsJson(const SolveResult& result) {
                        {"cache_hits", module.cacheHits},
                        {"seconds", module.seconds}});
   }
-  return {{"total_seconds", result.seconds},
+  const motion::CheckStatistics& checks = geometric.checks;
+  const std::size_t collisionChecks = checks.stateChecks + checks.motionChecks;
+  const std::size_t positives = checks.statePositives + checks.motionPositives;
+  return {{"geometry", world.predicates() != nullptr ? "exact" : "bounded"},
+          {"epsilon", io::epsilonSetting(world.description().settings)},
+          {"total_seconds", result.seconds},
           {"symbolic_seconds", result.symbolicSeconds},
           {"geometric_seconds", result.geometricSeconds},
           {"ik_calls", geometric.ikCalls},
@@ -138,6 +143,13 @@ nlohmann::json statisticsJson(const SolveResult& result) {
           {"state_check_seconds", geometric.checks.stateSeconds},
           {"motion_checks", geometric.checks.motionChecks},
           {"motion_check_seconds", geometric.checks.motionSeconds},
+          {"state_check_positives", checks.statePositives},
+          {"motion_check_positives", checks.motionPositives},
+          {"collision_checks", collisionChecks},
+          {"collision_check_seconds", checks.stateSeconds + checks.motionSeconds},
+          {"positive_share", collisionChecks == 0 ? 0.0
+                                                  : static_cast<double>(positives) /
+                                                        static_cast<double>(collisionChecks)},
           {"geometric_calls", geometric.calls},
           {"geometric_failures", geometric.failures},
           {"geometric_states", result.geometricStates},
@@ -167,7 +179,7 @@ nlohmann::json planFileJson(Solver& solver, const SolveResult& result, const Pla
           {"initial_state", stateJson(solver.world(), solver.world().initialState())},
           {"root", result.plan.root},
           {"nodes", nodes},
-          {"statistics", statisticsJson(result)},
+          {"statistics", statisticsJson(solver.world(), result)},
           {"verification",
            {{"passed", verification.passed()},
             {"symbolic_valid", verification.symbolic.valid},

@@ -20,7 +20,8 @@ struct PlanSources {
 // The plan file of `result`, solved by `solver`.
 nlohmann::json planFileJson(Solver& solver, const SolveResult& result, const PlanSources& sources);
 
-// The statistics of `result` (Table 6.7's rows): times, search, attachment calls, geometry.
-nlohmann::json statisticsJson(const SolveResult& result);
+// The statistics of `result` (Table 6.7's rows): times, search, attachment calls, geometry; and
+// how `world` answered the collision queries (its ε, bounded or exact predicates).
+nlohmann::json statisticsJson(const World& world, const SolveResult& result);
 
 }  // namespace kaboum::tamp

@@ -98,6 +98,14 @@ double lowerBoundOfDistance(const ReferenceShape& a, const Pose& poseA, const Re
   return ((poseA * a.centre) - (poseB * b.centre)).norm() - a.radius - b.radius;
 }
 
+bool shapesCollide(const ReferenceShape& a, const Pose& transformA, const ReferenceShape& b,
+                   const Pose& transformB) {
+  fcl::CollisionRequestd request;
+  fcl::CollisionResultd collision;
+  fcl::collide(a.geometry.get(), transformA, b.geometry.get(), transformB, request, collision);
+  return collision.isCollision();
+}
+
 }  // namespace
 
 struct ReferenceGeometry::Bodies {
@@ -158,12 +166,8 @@ Proximity ReferenceGeometry::proximity(std::size_t a, const Pose& poseA, std::si
       const double lowerBound = lowerBoundOfDistance(shapeA, poseA, shapeB, poseB);
       if (lowerBound > 0 && lowerBound >= std::min(distanceOfInterest, result.distance)) continue;
       const Pose transformA = poseA * shapeA.inBody, transformB = poseB * shapeB.inBody;
-      if (lowerBound <= 0) {
-        fcl::CollisionRequestd request;
-        fcl::CollisionResultd collision;
-        fcl::collide(shapeA.geometry.get(), transformA, shapeB.geometry.get(), transformB, request,
-                     collision);
-        if (collision.isCollision()) return {true, 0.0};
+      if (lowerBound <= 0 && shapesCollide(shapeA, transformA, shapeB, transformB)) {
+        return {true, 0.0};
       }
       if (lowerBound >= std::min(distanceOfInterest, result.distance)) continue;
       fcl::DistanceRequestd request;
@@ -174,6 +178,19 @@ Proximity ReferenceGeometry::proximity(std::size_t a, const Pose& poseA, std::si
     }
   }
   return result;
+}
+
+bool ReferenceGeometry::collides(std::size_t a, const Pose& poseA, std::size_t b,
+                                 const Pose& poseB) const {
+  for (const ReferenceShape& shapeA : bodies_->bodies.at(a).shapes) {
+    for (const ReferenceShape& shapeB : bodies_->bodies.at(b).shapes) {
+      if (lowerBoundOfDistance(shapeA, poseA, shapeB, poseB) <= 0 &&
+          shapesCollide(shapeA, poseA * shapeA.inBody, shapeB, poseB * shapeB.inBody)) {
+        return true;
+      }
+    }
+  }
+  return false;
 }
 
 std::size_t ReferenceGeometry::triangleCount() const {

@@ -45,6 +45,11 @@ class ReferenceGeometry {
   [[nodiscard]] Proximity proximity(std::size_t a, const Pose& poseA, std::size_t b,
                                     const Pose& poseB, double distanceOfInterest) const;
 
+  // Whether bodies a and b at these world poses collide (FCL collide on each shape pair whose
+  // bounding spheres meet; no distance is computed).
+  [[nodiscard]] bool collides(std::size_t a, const Pose& poseA, std::size_t b,
+                              const Pose& poseB) const;
+
   // Triangles of the original meshes over all bodies, and the seconds taken to build them.
   [[nodiscard]] std::size_t triangleCount() const;
   [[nodiscard]] double buildSeconds() const;

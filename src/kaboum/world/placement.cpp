@@ -12,6 +12,7 @@
 #include <variant>
 
 #include "kaboum/kinematics/random_configuration.hpp"
+#include "kaboum/world/state_predicates.hpp"
 
 namespace kaboum::world {
 
@@ -334,6 +335,9 @@ bool PlacementGeometry::isInside(std::size_t object, const Pose& pose, std::size
 
 bool PlacementGeometry::collides(const GeometricState& state, const QueryScratch& scratch,
                                  std::size_t object, const Pose& pose) const {
+  if (const StatePredicates* predicates = world_.predicates()) {
+    return predicates->firstCollisionOfObject(state, scratch, object, pose, true).has_value();
+  }
   const CollisionBody& body = world_.scene().body(object);
   if (world_.scene().firstCollision(state.placements, body, pose, 0.0, object)) return true;
   const Vec3 centre = pose * body.bounds().centre;

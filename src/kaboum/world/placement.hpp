@@ -179,7 +179,8 @@ class PlacementGeometry {
   // The object's pose in `state`: its placement, or a static object's pose; nullopt when held.
   [[nodiscard]] std::optional<Pose> poseIn(const GeometricState& state, std::size_t object) const;
   // Whether object `object` at `pose` is within distance 0 of another object or a robot part
-  // (scratch.linkPoses computed), ignoring its own placement and hold.
+  // (scratch.linkPoses computed), ignoring its own placement and hold; with the World's installed
+  // predicates (World::usePredicates) when it has them.
   [[nodiscard]] bool collides(const GeometricState& state, const QueryScratch& scratch,
                               std::size_t object, const Pose& pose) const;
   // isOnSupportSurface with scratch.linkPoses computed.

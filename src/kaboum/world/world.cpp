@@ -15,6 +15,7 @@
 #include "kaboum/core/worker_pool.hpp"
 #include "kaboum/io/mesh_io.hpp"
 #include "kaboum/io/urdf_loader.hpp"
+#include "kaboum/world/state_predicates.hpp"
 
 namespace kaboum::world {
 
@@ -535,21 +536,19 @@ std::optional<Collision> World::firstCollisionOfRobot(const GeometricState& stat
                                                       std::size_t robot,
                                                       std::span<const std::uint8_t> against,
                                                       double margin) const {
-  const auto partyOf = [&](std::size_t r, std::size_t part) {
-    const std::size_t links = robots_[r].collision.partCount();
-    return part < links ? Party{Party::Kind::Robot, r, robots_[r].collision.part(part).link}
-                        : Party{Party::Kind::Object, state.robots[r].heldObjects[part - links]};
-  };
+  if (predicates_ != nullptr) {
+    return predicates_->firstCollisionOfRobot(state, scratch, robot, against);
+  }
   const RobotCollisionModel& model = robots_[robot].collision;
   const std::span<const Attachment> held = state.robots[robot].held;
   const std::span<const Pose> poses = scratch.linkPoses[robot];
   if (const auto parts = model.firstSelfCollision(poses, held, 2 * margin)) {
-    return Collision{partyOf(robot, parts->first), partyOf(robot, parts->second)};
+    return Collision{partyOf(state, robot, parts->first), partyOf(state, robot, parts->second)};
   }
   for (std::size_t i = 0; i < model.partCount(held); ++i) {
     if (const auto hit = scene_.firstCollision(state.placements, *model.part(i, held).body,
                                                model.partPose(i, poses, held), margin)) {
-      return Collision{partyOf(robot, i), {Party::Kind::Object, *hit}};
+      return Collision{partyOf(state, robot, i), {Party::Kind::Object, *hit}};
     }
   }
   for (std::size_t other = 0; other < robots_.size(); ++other) {
@@ -562,7 +561,7 @@ std::optional<Collision> World::firstCollisionOfRobot(const GeometricState& stat
         if (bodiesCollide(*model.part(i, held).body, pose, *otherModel.part(j, otherHeld).body,
                           otherModel.partPose(j, scratch.linkPoses[other], otherHeld),
                           2 * margin)) {
-          return Collision{partyOf(robot, i), partyOf(other, j)};
+          return Collision{partyOf(state, robot, i), partyOf(state, other, j)};
         }
       }
     }
@@ -584,9 +583,16 @@ std::optional<Collision> World::firstCollision(const GeometricState& state,
   }
   for (std::size_t object = 0; object < scene_.size(); ++object) {
     if (!scene_.movable(object) || !scene_.present(object, state.placements)) continue;
+    const Pose pose = scene_.pose(object, state.placements);
+    if (predicates_ != nullptr) {
+      if (const auto hit =
+              predicates_->firstCollisionOfObject(state, scratch, object, pose, false)) {
+        return Collision{{Party::Kind::Object, object}, *hit};
+      }
+      continue;
+    }
     if (const auto hit =
-            scene_.firstCollision(state.placements, scene_.body(object),
-                                  scene_.pose(object, state.placements), 0.0, object)) {
+            scene_.firstCollision(state.placements, scene_.body(object), pose, 0.0, object)) {
       return Collision{{Party::Kind::Object, object}, {Party::Kind::Object, *hit}};
     }
   }
@@ -596,6 +602,13 @@ std::optional<Collision> World::firstCollision(const GeometricState& state,
 std::optional<Collision> World::firstCollision(const GeometricState& state) const {
   QueryScratch buffers = scratch();
   return firstCollision(state, buffers);
+}
+
+Party World::partyOf(const GeometricState& state, std::size_t robot, std::size_t part) const {
+  const RobotCollisionModel& model = robots_[robot].collision;
+  const std::size_t links = model.partCount();
+  return part < links ? Party{Party::Kind::Robot, robot, model.part(part).link}
+                      : Party{Party::Kind::Object, state.robots[robot].heldObjects[part - links]};
 }
 
 std::string World::linkName(const Party& party) const {

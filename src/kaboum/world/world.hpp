@@ -116,6 +116,8 @@ struct QueryScratch {
   std::vector<std::uint8_t> againstRobots;  // one flag per robot
 };
 
+class StatePredicates;  // state_predicates.hpp
+
 class World {
  public:
   // Builds the geometry of `scene`. Movable objects resting on another object (touching it, free
@@ -187,6 +189,19 @@ class World {
   // The same with buffers of its own (allocates them).
   [[nodiscard]] std::optional<Collision> firstCollision(const GeometricState& state) const;
 
+  // Makes the collision queries (firstCollision, firstCollisionOfRobot, and the placements'
+  // collision test) answer with `predicates` instead of the bounded predicates — their margins
+  // then do not apply —, or with the bounded predicates again (nullptr). `predicates` must
+  // outlive its use; install it before sharing the World between threads.
+  void usePredicates(const StatePredicates* predicates) { predicates_ = predicates; }
+  // The installed predicates, or nullptr for the bounded ones.
+  [[nodiscard]] const StatePredicates* predicates() const { return predicates_; }
+
+  // The party of part `part` of robot `robot` holding what it holds in `state`
+  // (RobotCollisionModel::part: its links' parts, then the objects it holds).
+  [[nodiscard]] Party partyOf(const GeometricState& state, std::size_t robot,
+                              std::size_t part) const;
+
   // "robot 'twin' link 'left_link3'", "object 'bottle'": a party's name for messages.
   [[nodiscard]] std::string describe(const Party& party) const;
   // "robot 'twin' link 'left_flange' collides with object 'table'"; "robot 'twin' link
@@ -210,6 +225,7 @@ class World {
   DecompositionSummary decompositions_;
   SceneState initialPlacements_;  // the scene's initial placements, resting objects raised
   double preprocessingSeconds_ = 0;
+  const StatePredicates* predicates_ = nullptr;
 };
 
 }  // namespace kaboum::world
