@@ -30,7 +30,7 @@ scenarios=(
 
 # One run: "status|total s|collision-checking s|collision checks|positive share".
 run() {
-  "$kaboum" solve "$@" --time-limit "$limit" --no-verify --json --quiet > "$out/plan.json" \
+  "$kaboum" solve "$@" --integrated --time-limit "$limit" --no-verify --json --quiet > "$out/plan.json" \
     2> /dev/null
   python3 - "$out/plan.json" <<'PY'
 import json, sys
