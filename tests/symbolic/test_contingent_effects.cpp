@@ -374,6 +374,17 @@ TEST(PlanTreeDepth, PlansLongerThanTheCallStackIsDeepAreValidatedAndMeasured) {
   EXPECT_EQ(validation.metrics.actions, kActions + 1);
   EXPECT_EQ(validation.metrics.depth, static_cast<std::size_t>(kActions) + 1);
   EXPECT_EQ(validation.metrics.dagNodes, static_cast<std::size_t>(kActions) + 2);
+
+  // A deadline stops the validation before an action once its time is up.
+  PlannerLimits none;
+  none.seconds = 0;
+  const Deadline deadline(none);
+  while (deadline.elapsedSeconds() <= 0) {
+  }
+  const TreeValidation stopped = validatePlanTree(task, plan, "plan", &deadline);
+  EXPECT_FALSE(stopped.valid);
+  EXPECT_EQ(stopped.stoppedBy, PlannerStatus::TimeLimit);
+  EXPECT_EQ(stopped.message, "plan: stopped before (wait): time-limit");
 }
 
 TEST(ContingentEffects, APlanNamesItsSamplesAsNumbers) {

@@ -32,8 +32,10 @@ struct LimitReached {
   PlannerStatus status;
 };
 
-// Symbolic plans refined before the search with effect applicators takes over (symbolicFirst).
-constexpr std::size_t kMaxRefinements = 128;
+// Symbolic plans refined before the search with effect applicators takes over (symbolicFirst),
+// and the share of the time limit they may take.
+constexpr std::size_t kMaxRefinements = 32;
+constexpr double kRefiningShare = 0.5;
 
 enum class OrMode { Greedy, AStar, BreadthFirst, DepthFirst, IterativeDeepening };
 
@@ -564,12 +566,16 @@ ContingentResult solveContingent(KnowledgeTask& task, const ContingentOptions& o
   if (!options.symbolicFirst || !effectApplicators || readsAttachmentValues(task.task())) {
     return AndOrSearch(task, options).run();
   }
-  const Deadline clock;
+  // The symbolic plans and their refinements get at most half of the time limit.
+  PlannerLimits refining = options.limits;
+  refining.seconds *= kRefiningShare;
+  const Deadline clock(refining);
   ContingentStatistics total;
-  // Each limit counts over every search; the searches after the first get what is left.
-  const auto remaining = [&] {
+  // Each limit counts over every search; the searches after the first get what is left (of
+  // `seconds`).
+  const auto remaining = [&](double seconds) {
     ContingentOptions rest = options;
-    rest.limits.seconds = std::max(0.0, options.limits.seconds - clock.elapsedSeconds());
+    rest.limits.seconds = std::max(0.0, seconds - clock.elapsedSeconds());
     rest.limits.expansions -= std::min(total.expanded, rest.limits.expansions - 1);
     return rest;
   };
@@ -589,17 +595,24 @@ ContingentResult solveContingent(KnowledgeTask& task, const ContingentOptions& o
   // transition whose effect failed is left out of the next symbolic search.
   std::unordered_set<std::uint64_t> blocked;
   while (total.refinements < kMaxRefinements) {
-    ContingentResult symbolic = AndOrSearch(task, remaining(), &blocked).run();
+    ContingentResult symbolic = AndOrSearch(task, remaining(refining.seconds), &blocked).run();
     add(symbolic);
     // Without blocked transitions the symbolic search is a relaxation of the search with effect
     // applicators (the same symbolic transitions, none made infeasible by geometry): no plan
-    // there, or a limit reached, is the answer of both.
-    if (symbolic.status != PlannerStatus::Solved &&
+    // there is the answer of both, and so is any limit but time's (time is shared).
+    if (symbolic.status != PlannerStatus::Solved && symbolic.status != PlannerStatus::TimeLimit &&
         (blocked.empty() || symbolic.status != PlannerStatus::Unsolvable)) {
       return symbolic;
     }
     if (symbolic.status != PlannerStatus::Solved) break;
-    const TreeValidation refinement = validatePlanTree(task, symbolic.plan, "symbolic plan");
+    const TreeValidation refinement =
+        validatePlanTree(task, symbolic.plan, "symbolic plan", &clock);
+    if (refinement.stoppedBy && *refinement.stoppedBy != PlannerStatus::TimeLimit) {
+      symbolic.status = *refinement.stoppedBy;
+      symbolic.plan = {};
+      return symbolic;
+    }
+    if (refinement.stoppedBy) break;
     if (refinement.valid) {
       symbolic.statistics.refinedSymbolicPlan = true;
       symbolic.statistics.seconds = clock.elapsedSeconds();
@@ -612,7 +625,7 @@ ContingentResult solveContingent(KnowledgeTask& task, const ContingentOptions& o
         transitionKey(task.symbolicKey(refinement.infeasibleIn), refinement.infeasibleOperator);
     if (!blocked.insert(key).second) break;
   }
-  ContingentResult result = AndOrSearch(task, remaining()).run();
+  ContingentResult result = AndOrSearch(task, remaining(options.limits.seconds)).run();
   add(result);
   result.statistics.refinementFailed = true;
   return result;
@@ -833,8 +846,8 @@ PlanTree parsePlanTree(std::string_view text, const std::string& file, const Kno
   return plan;
 }
 
-TreeValidation validatePlanTree(KnowledgeTask& task, const PlanTree& plan,
-                                const std::string& file) {
+TreeValidation validatePlanTree(KnowledgeTask& task, const PlanTree& plan, const std::string& file,
+                                const Deadline* deadline) {
   TreeValidation out;
   std::set<std::pair<int, Belief>> checked;
   std::vector<char> onPath(plan.nodes.size(), 0);
@@ -861,6 +874,11 @@ TreeValidation validatePlanTree(KnowledgeTask& task, const PlanTree& plan,
       }
       if (node.kind == PlanTree::Node::Kind::Action) {
         const std::string name = "(" + task.task().operators[node.op].name + ")";
+        if (deadline != nullptr) out.stoppedBy = deadline->reached(0, 0);
+        if (out.stoppedBy) {
+          failure = at(node, "stopped before " + name + ": " + toString(*out.stoppedBy));
+          break;
+        }
         Belief next;
         const std::vector<int>& variants = task.variants(node.op);
         const auto op = std::find_if(variants.begin(), variants.end(),

@@ -5,10 +5,12 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "kaboum/core/deadline.hpp"
 #include "kaboum/symbolic/knowledge.hpp"
 #include "kaboum/symbolic/search.hpp"
 #include "kaboum/symbolic/sexpr.hpp"
@@ -140,11 +142,16 @@ struct TreeValidation {
   // knowledge state it was applied in; otherwise -1.
   int infeasibleOperator = -1;
   Belief infeasibleIn;
+  // The limit that stopped the validation (a deadline was given), if one did.
+  std::optional<PlannerStatus> stoppedBy;
 };
 
 // Checks every branch from the initial knowledge: each action's precondition is known to hold,
 // each branch atom is known-whether (sensed), and every leaf knows the goal.
-TreeValidation validatePlanTree(KnowledgeTask& task, const PlanTree& plan, const std::string& file);
+// With `deadline`, stops once one of its limits is reached (its expansion limit does not count),
+// before an action.
+TreeValidation validatePlanTree(KnowledgeTask& task, const PlanTree& plan, const std::string& file,
+                                const Deadline* deadline = nullptr);
 
 struct Execution {
   bool reachedGoal = false;
