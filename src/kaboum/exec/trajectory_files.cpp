@@ -147,7 +147,8 @@ json executionJson(const world::World& world, const ExecutionResult& result, dou
                        {"start", motion.start},
                        {"duration", motion.path.duration()},
                        {"waypoints", motion.path.waypoints()},
-                       {"segment_durations", motion.path.durations()}});
+                       {"segment_durations", motion.path.durations()},
+                       {"path_deviation", pathDeviation(motion.path, 1 / rate)}});
   }
   json events = json::array();
   for (const GripperEvent& event : schedule.events()) events.push_back(eventJson(world, event));
