@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "kaboum/core/error.hpp"
+#include "kaboum/io/json_kinematics.hpp"
 #include "kaboum/motion/motion_planner.hpp"
 #include "kaboum/motion/world_checkers.hpp"
 
@@ -70,26 +71,7 @@ WorldObservation readWorldObservation(const json& file, const std::string& fileN
       fail(at, "no object '" + name + "' in the scene");
     }
     if (!world.scene().movable(found->index)) fail(at, "object '" + name + "' is not movable");
-    const auto numbers = [&](const char* key, std::size_t count) {
-      if (!value.is_object() || !value.contains(key) || !value[key].is_array() ||
-          value[key].size() != count ||
-          !std::all_of(value[key].begin(), value[key].end(),
-                       [](const json& x) { return x.is_number(); })) {
-        fail(at + "." + key, fmt::format("expected {} numbers", count));
-      }
-      return value[key].get<std::vector<double>>();
-    };
-    const std::vector<double> p = numbers("position", 3);
-    const std::vector<double> q = numbers("quaternion_wxyz", 4);
-    const Eigen::Quaterniond rotation(q[0], q[1], q[2], q[3]);
-    if (!std::isfinite(rotation.norm() + p[0] + p[1] + p[2]) ||
-        std::abs(rotation.norm() - 1) > 1e-6) {
-      fail(at, "not a finite position and unit quaternion");
-    }
-    Pose pose = Pose::Identity();
-    pose.translation() = Vec3(p[0], p[1], p[2]);
-    pose.linear() = rotation.normalized().toRotationMatrix();
-    observation.objects[found->index] = pose;
+    observation.objects[found->index] = io::poseFromJson(value, fileName, at);
   }
   return observation;
 }
@@ -192,7 +174,8 @@ ExecutionResult execute(const world::World& world, const symbolic::KnowledgeTask
                          Schedule(initial, limits, options.trajectory.profile),
                          branchTimings(plan, task, limits, options.trajectory.profile)};
   int n = plan.plan.root;
-  for (std::size_t visited = 0; n >= 0 && visited <= plan.plan.nodes.size() * 64; ++visited) {
+  // A run through a DAG meets each node at most once.
+  for (std::size_t visited = 0; n >= 0 && visited <= plan.plan.nodes.size(); ++visited) {
     const auto node = static_cast<std::size_t>(n);
     const PlanTree::Node& at = plan.plan.nodes[node];
     if (at.kind == PlanTree::Node::Kind::Goal) {
@@ -230,7 +213,7 @@ ExecutionResult execute(const world::World& world, const symbolic::KnowledgeTask
     result.schedule.append(node, name, plan.geometry[node]);
     n = at.next;
   }
-  throw InputError("the plan does not reach a goal node");
+  throw InputError(fmt::format("nodes[{}]: the plan does not reach a goal node (a cycle)", n));
 }
 
 }  // namespace kaboum::exec

@@ -1,9 +1,13 @@
 #include "kaboum/exec/schedule.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <stdexcept>
+
+#include "kaboum/core/error.hpp"
 
 namespace kaboum::exec {
 
@@ -138,6 +142,9 @@ std::vector<BranchTiming> branchTimings(const tamp::PlanFileContents& plan,
     auto [n, way] = std::move(open.back());
     open.pop_back();
     if (n < 0) continue;
+    if (way.actions.size() + way.outcomes.size() > plan.plan.nodes.size()) {
+      throw InputError(fmt::format("nodes[{}]: the plan does not reach a goal node (a cycle)", n));
+    }
     const Node& node = plan.plan.nodes[static_cast<std::size_t>(n)];
     if (node.kind == Node::Kind::Goal) {
       out.push_back(std::move(way));

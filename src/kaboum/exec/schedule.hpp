@@ -113,7 +113,7 @@ struct BranchTiming {
 };
 
 // Every way through the plan (the DAG unfolded into a tree), each action timed as a Schedule
-// times it.
+// times it. Throws InputError for a plan with a cycle.
 std::vector<BranchTiming> branchTimings(const tamp::PlanFileContents& plan,
                                         const symbolic::KnowledgeTask& task,
                                         const std::vector<JointLimits>& limits, Profile profile);

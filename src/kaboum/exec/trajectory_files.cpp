@@ -188,6 +188,10 @@ void writeExecutionStream(std::ostream& out, const world::World& world,
     qd[r].resize(schedule.dof(r));
     qdd[r].resize(schedule.dof(r));
   }
+  std::vector<std::string> names;  // as JSON strings
+  for (const world::RobotSpec& robot : world.description().robots) {
+    names.push_back(json(robot.name).dump());
+  }
   std::size_t next = 0;
   fmt::memory_buffer line;
   for (const double t : sampleTimes(schedule.duration(), rate)) {
@@ -198,9 +202,9 @@ void writeExecutionStream(std::ostream& out, const world::World& world,
     fmt::format_to(std::back_inserter(line), R"({{"type":"sample","time":{},"robots":{{)", t);
     for (std::size_t r = 0; r < q.size(); ++r) {
       schedule.sample(t, r, q[r], qd[r], qdd[r]);
-      fmt::format_to(std::back_inserter(line), R"({}"{}":{{"q":[{}],"qd":[{}],"qdd":[{}]}})",
-                     r == 0 ? "" : ",", world.description().robots[r].name, fmt::join(q[r], ","),
-                     fmt::join(qd[r], ","), fmt::join(qdd[r], ","));
+      fmt::format_to(std::back_inserter(line), R"({}{}:{{"q":[{}],"qd":[{}],"qdd":[{}]}})",
+                     r == 0 ? "" : ",", names[r], fmt::join(q[r], ","), fmt::join(qd[r], ","),
+                     fmt::join(qdd[r], ","));
     }
     line.append(std::string_view("}}\n"));
     out.write(line.data(), static_cast<std::streamsize>(line.size()));
