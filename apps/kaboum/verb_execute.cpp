@@ -98,7 +98,6 @@ int run(const Options& options) {
     throw InputError(fmt::format("--rate {}: expected a rate in (0, 1e6] Hz", options.rate));
   }
   exec::ExecutionOptions execution;
-  execution.trajectory.rate = options.rate;
   try {
     execution.trajectory.profile = exec::profileNamed(options.profile);
   } catch (const std::invalid_argument& error) {

@@ -93,8 +93,7 @@ std::string preconditionFailure(const world::World& world, const world::Geometri
       const std::string robot = world.robots()[step.robot].name;
       if (step.kind == GeometricStep::Kind::Grasp) {
         // Where the plan's grasp holds the object: the tool link at the robot's configuration.
-        world::GeometricState held = states[s + 1];
-        const Pose planned = tamp::objectPose(world, held, step.object);
+        const Pose planned = tamp::objectPose(world, states[s + 1], step.object);
         const Pose observed = tamp::objectPose(world, states[s], step.object);
         const double distance = (planned.translation() - observed.translation()).norm();
         const double angle =

@@ -17,7 +17,6 @@ namespace kaboum::exec {
 
 struct TrajectoryOptions {
   Profile profile = Profile::RestToRest;
-  double rate = 1000;  // samples per second
   // For joints whose limits neither the scene (`joint_limits`) nor the URDF gives: rad/s or m/s,
   // rad/s² or m/s².
   double defaultVelocity = 1.0;
