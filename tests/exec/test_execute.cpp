@@ -196,12 +196,14 @@ TEST(Execute, ObservedObjectsReCheckEachActionsGeometricPrecondition) {
 
 TEST(Execute, AnObjectInTheWayStopsTheActionWhoseMotionItBlocks) {
   ExampleRun& run = bartender();
-  // Bottle o2 stands where robot1 is to put o1 down.
+  // Observing nothing new: every action's precondition holds as the planner certified it.
   WorldObservation observed;
-  observed.objects[run.world().find("o2")->index] = sharedPlacement(run);
   ExecutionOptions options;
   options.sensing = hiddenFile(run, "bartender-1-empty.hidden.pddl");
   options.observed = &observed;
+  EXPECT_TRUE(execute(run.world(), run.task(), run.plan(), options).reachedGoal);
+  // Bottle o2 stands where robot1 is to put o1 down.
+  observed.objects[run.world().find("o2")->index] = sharedPlacement(run);
   const ExecutionResult result = execute(run.world(), run.task(), run.plan(), options);
   EXPECT_FALSE(result.reachedGoal);
   EXPECT_EQ(actionNames(result),
