@@ -35,7 +35,8 @@ class TimedPath {
   // s(τ) = 10τ³ − 15τ⁴ + 6τ⁵, T_i the shortest duration within every joint's limits.
   // Blended: one quintic per segment and joint with the velocity at a via point the mean of its
   // two segments' mean velocities (0 where they differ in sign or at an end), zero acceleration
-  // at every waypoint, all durations scaled together until the tightest limit is just met.
+  // at every waypoint; each segment's duration brought towards its own limits in a few rounds,
+  // then all durations scaled together until the tightest limit is just met.
   // Throws std::invalid_argument for waypoints of different sizes or limits that are not positive.
   TimedPath(std::vector<std::vector<double>> waypoints, const JointLimits& limits, Profile profile);
 
