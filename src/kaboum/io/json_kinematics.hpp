@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "kaboum/core/types.hpp"
@@ -12,6 +13,10 @@ namespace kaboum::io {
 
 // position [x, y, z], quaternion_wxyz [w, x, y, z] (the rotation as a unit quaternion).
 nlohmann::json toJson(const Pose& pose);
+// The pose toJson(Pose) writes, read from `value` (at key `key` of file `file`). Throws InputError
+// with one line naming the file and the key, e.g. "plan.json: nodes[3].pose.position: expected 3
+// numbers".
+Pose poseFromJson(const nlohmann::json& value, const std::string& file, const std::string& key);
 
 // reachable (at least one solution), solutions: one array of joint values per solution, root to
 // tip.

@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "kaboum/core/error.hpp"
+#include "kaboum/io/json_kinematics.hpp"
 #include "kaboum/symbolic/sexpr.hpp"
 #include "kaboum/verify/reference_geometry.hpp"
 
@@ -66,22 +67,7 @@ class Reader {
   }
   // A pose as io::toJson(Pose) writes it: {position, quaternion_wxyz}.
   Pose pose(const json& object, const std::string& key, const std::string& name) const {
-    const json& value = member(object, key, name);
-    const std::string at = key + "." + name;
-    const std::vector<double> position = numbers(member(value, at, "position"), at + ".position");
-    const std::vector<double> q =
-        numbers(member(value, at, "quaternion_wxyz"), at + ".quaternion_wxyz");
-    if (position.size() != 3) fail(at + ".position", "expected 3 numbers");
-    if (q.size() != 4) fail(at + ".quaternion_wxyz", "expected 4 numbers");
-    const Eigen::Quaterniond rotation(q[0], q[1], q[2], q[3]);
-    if (!std::isfinite(rotation.norm()) || std::abs(rotation.norm() - 1) > 1e-6 ||
-        !std::isfinite(position[0] + position[1] + position[2])) {
-      fail(at, "not a finite position and unit quaternion");
-    }
-    Pose pose = Pose::Identity();
-    pose.translation() = Vec3(position[0], position[1], position[2]);
-    pose.linear() = rotation.normalized().toRotationMatrix();
-    return pose;
+    return io::poseFromJson(member(object, key, name), file_, key + "." + name);
   }
   // One S-expression, written the way the task names things.
   SExpr expression(const std::string& text, const std::string& key) const {
