@@ -122,7 +122,7 @@ class AndOrSearch {
 
   int worstValue(const Belief& belief, Heuristic& estimate, std::vector<int>& cache) {
     int worst = 0;
-    for (const std::uint32_t w : belief) {
+    for (const std::uint32_t w : task_.heuristicWorlds(belief)) {
       if (w >= cache.size()) cache.resize(task_.worldCount(), -1);
       if (cache[w] < 0) {
         cache[w] = estimate.evaluate(task_.world(w), nullptr);
