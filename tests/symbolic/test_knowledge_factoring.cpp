@@ -132,6 +132,31 @@ TEST(FactoredKnowledge, IndependentUnknownsAreSeparateComponents) {
   EXPECT_TRUE(task.applicable(task.findOperator("(transferfast o3)"), onFalse));
 }
 
+TEST(FactoredKnowledge, SettledComponentsShareSubPlansExactly) {
+  // Once a container is removed nothing reads whether it was spillable: the branches join, so
+  // the plan is a DAG of a few nodes per container instead of 2^n leaves of distinct nodes.
+  const ContingentProblem thirty =
+      parseContingent(forceSensingDomain(), "fs-domain", forceSensingProblem(30), "fs-30");
+  KnowledgeTask task(thirty, ProcedureRegistry{});
+  const ContingentResult result = testing::solveAndValidate(task);
+  ASSERT_EQ(result.status, PlannerStatus::Solved);
+  const TreeMetrics metrics = measure(result.plan);
+  EXPECT_EQ(metrics.leaves, std::ldexp(1.0, 30));
+  EXPECT_LT(metrics.dagNodes, 400u);
+  Belief key;
+  task.sharingKey(task.initialBelief(), key);
+  EXPECT_EQ(key, task.initialBelief());  // nothing is settled before any container is handled
+
+  // The explicit validator, which shares nothing, accepts the factored plan branch by branch.
+  const ContingentProblem eight =
+      parseContingent(forceSensingDomain(), "fs-domain", forceSensingProblem(8), "fs-8");
+  KnowledgeTask factored(eight, ProcedureRegistry{});
+  KnowledgeTask explicitTask(eight, ProcedureRegistry{}, 1000, KnowledgeRepresentation::Explicit);
+  const ContingentResult shared = solveContingent(factored, {});
+  ASSERT_EQ(shared.status, PlannerStatus::Solved);
+  expectValid(factored, shared, explicitTask, "force sensing 8, explicit check");
+}
+
 const std::string kCoupledDomain = R"((define (domain coupled)
   (:predicates (a) (b) (c) (done))
   (:action look-a :observe (a))

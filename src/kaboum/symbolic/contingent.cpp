@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <deque>
 #include <functional>
 #include <iomanip>
 #include <limits>
@@ -98,10 +99,16 @@ class AndOrSearch {
     std::vector<Outcome> outcomes;
   };
 
+  // Knowledge states with the same sharing key (equal up to settled components, factored
+  // knowledge) share one id, whose plan is that of the first one seen.
   int intern(Belief&& belief) {
-    const auto [it, added] = ids_.try_emplace(std::move(belief), static_cast<int>(beliefs_.size()));
+    if (task_.factored()) task_.sharingKey(belief, key_);
+    const bool keyed = task_.factored() && key_ != belief;
+    const auto [it, added] = ids_.try_emplace(keyed ? std::move(key_) : std::move(belief),
+                                              static_cast<int>(beliefs_.size()));
     if (added) {
-      beliefs_.push_back(&it->first);
+      if (keyed) representatives_.push_back(std::move(belief));
+      beliefs_.push_back(keyed ? &representatives_.back() : &it->first);
       solved_.push_back(-1);
       state_.push_back(kOpen);
     }
@@ -436,6 +443,8 @@ class AndOrSearch {
   double nextProgress_;  // seconds
   std::unordered_map<Belief, int, BeliefHash> ids_;
   std::vector<const Belief*> beliefs_;
+  std::deque<Belief> representatives_;  // of the ids whose key is not the knowledge state itself
+  Belief key_;
   std::vector<int> solved_;  // plan node of each solved knowledge state, -1 otherwise
   std::vector<char> state_;
   std::vector<int> worldValue_;
@@ -674,7 +683,8 @@ PlanTree parsePlanTree(std::string_view text, const std::string& file, const Kno
 TreeValidation validatePlanTree(KnowledgeTask& task, const PlanTree& plan,
                                 const std::string& file) {
   TreeValidation out;
-  std::set<std::pair<int, Belief>> checked;
+  std::set<std::pair<int, Belief>> checked;  // by sharing key: equal keys have the same plans
+  Belief key;
   std::vector<char> onPath(plan.nodes.size(), 0);
   const auto at = [&](const PlanTree::Node& node, const std::string& what) {
     return locate(file, what, node.pos.line, node.pos.column);
@@ -682,7 +692,8 @@ TreeValidation validatePlanTree(KnowledgeTask& task, const PlanTree& plan,
   const std::function<std::string(int, const Belief&)> walk = [&](int index, const Belief& belief) {
     const PlanTree::Node& node = plan.nodes[index];
     if (onPath[index]) return at(node, "the plan loops back to an earlier step");
-    if (!checked.insert({index, belief}).second) return std::string();
+    task.sharingKey(belief, key);
+    if (!checked.insert({index, key}).second) return std::string();
     onPath[index] = 1;
     std::string failure;
     if (node.kind == PlanTree::Node::Kind::Goal) {

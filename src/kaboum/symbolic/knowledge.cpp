@@ -291,6 +291,7 @@ void KnowledgeTask::setUpFactoring(KnowledgeRepresentation representation) {
     std::sort(touched.begin(), touched.end());
     touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
   }
+  setUpSettling();
 }
 
 // A goal atom that is unknown initially, that no operator changes and that no operator observes
@@ -895,6 +896,121 @@ std::uint32_t KnowledgeTask::hiddenWorldFactored(const HiddenState& hidden,
     }
   }
   return store(whole);
+}
+
+// Which component each atom's value or knowledge belongs to, and which components each operator
+// reads (precondition) or writes.
+void KnowledgeTask::setUpSettling() {
+  ownerOf_ = factoring_.componentOf;
+  for (std::size_t a = 0; a < ownerOf_.size(); ++a) {
+    for (const AtomId base : {kwBase_[a], kQuery_[a].base, forget_[a].base}) {
+      if (base >= 0 && factoring_.componentOf[base] >= 0) {
+        ownerOf_[a] = factoring_.componentOf[base];
+      }
+    }
+  }
+  opReadsOrWrites_.resize(task_.operators.size());
+  for (std::size_t o = 0; o < task_.operators.size(); ++o) {
+    const Operator& op = task_.operators[o];
+    std::vector<int>& components = opReadsOrWrites_[o];
+    const auto add = [&](const std::vector<AtomId>& atoms) {
+      for (const AtomId a : atoms) {
+        if (ownerOf_[a] >= 0) components.push_back(ownerOf_[a]);
+      }
+    };
+    add(op.effect.adds);
+    add(op.effect.deletes);
+    add(op.precondition.positive);
+    add(op.precondition.negative);
+    for (const ConditionalEffect& c : op.conditional) {
+      add(c.effect.adds);
+      add(c.effect.deletes);
+      for (const Condition& d : c.disjuncts) {
+        add(d.positive);
+        add(d.negative);
+      }
+    }
+    std::sort(components.begin(), components.end());
+    components.erase(std::unique(components.begin(), components.end()), components.end());
+  }
+}
+
+// The current truth of a knowledge atom (K, Kw or Kv query) as holdsAtoms reads it.
+bool KnowledgeTask::knowledgeLiteralHolds(AtomId atom, const Belief& belief) {
+  if (kQuery_[atom].base != kNotKnowledge) return kQueryHolds(atom, belief);
+  if (kwBase_[atom] != kNotKnowledge) return kwHolds(atom, belief);
+  return kvHolds(atom, belief);
+}
+
+// Whether `precondition` may hold after some actions, in the delete relaxation from `belief` in
+// which settled components keep their knowledge: a knowledge literal of a settled component is
+// read as it is now; other knowledge literals may go either way.
+bool KnowledgeTask::relaxedApplicable(const Condition& precondition, const Belief& belief) {
+  for (const bool positive : {true, false}) {
+    for (const AtomId a : positive ? precondition.positive : precondition.negative) {
+      const bool knowledge = kQuery_[a].base != kNotKnowledge || kwBase_[a] != kNotKnowledge ||
+                             kvBase_[a] != kNotKnowledge;
+      if (knowledge) {
+        const int c = ownerOf_[a];
+        if (c >= 0 && !unsettled_[c] && knowledgeLiteralHolds(a, belief) != positive) return false;
+      } else if (!(positive ? canBeTrue_[a] : canBeFalse_[a])) {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+void KnowledgeTask::sharingKey(const Belief& belief, Belief& key) {
+  key = belief;
+  if (!factored_ || belief.empty()) return;
+  summarize(belief);
+  unsettled_.assign(static_cast<std::size_t>(factoring_.components), 0);
+  const auto unsettle = [&](AtomId a) {
+    if (ownerOf_[a] >= 0) unsettled_[ownerOf_[a]] = 1;
+  };
+  if (task_.goal.size() == 1) {
+    for (const AtomId a : task_.goal[0].positive) unsettle(a);
+    for (const AtomId a : task_.goal[0].negative) unsettle(a);
+  }
+  for (const AtomId k : knowledgeAtoms_) {  // a pending observation is still to be branched on
+    const AtomId base = kwBase_[k];
+    if (base >= 0 && bit(allWorlds_, k) && bit(anyWorld_, base) && !bit(allWorlds_, base)) {
+      unsettle(base);
+    }
+  }
+  const std::size_t atoms = task_.atomNames.size();
+  canBeTrue_.resize(atoms);
+  canBeFalse_.resize(atoms);
+  for (std::size_t a = 0; a < atoms; ++a) {
+    canBeTrue_[a] = bit(anyWorld_, static_cast<AtomId>(a));
+    canBeFalse_[a] = !bit(allWorlds_, static_cast<AtomId>(a));
+  }
+  const auto reach = [&](const EffectList& effect) {
+    for (const AtomId a : effect.adds) {
+      canBeTrue_[a] = 1;
+      const AtomId subject = forget_[a].base;
+      if (subject >= 0) canBeTrue_[subject] = canBeFalse_[subject] = 1;
+    }
+    for (const AtomId a : effect.deletes) canBeFalse_[a] = 1;
+  };
+  // Unsettling a component only widens the relaxation, so one monotone fixpoint suffices.
+  reached_.assign(task_.operators.size(), 0);
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (std::size_t o = 0; o < task_.operators.size(); ++o) {
+      const Operator& op = task_.operators[o];
+      if (reached_[o] || !relaxedApplicable(op.precondition, belief)) continue;
+      reached_[o] = 1;
+      changed = true;
+      for (const int c : opReadsOrWrites_[o]) unsettled_[c] = 1;
+      reach(op.effect);
+      for (const ConditionalEffect& c : op.conditional) reach(c.effect);
+    }
+  }
+  for (int c = 0; c < factoring_.components; ++c) {
+    if (!unsettled_[c]) key[static_cast<std::size_t>(c) + 1] = kSettled;
+  }
 }
 
 }  // namespace kaboum::symbolic

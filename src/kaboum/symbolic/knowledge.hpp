@@ -56,6 +56,12 @@ class KnowledgeTask {
   // local world of each component completed with the first local world of the others (a sample
   // of real worlds, linear in the components). Valid until the next call.
   const Belief& heuristicWorlds(const Belief& belief);
+  // `belief` with each settled component (factored only) replaced by kSettled: one that the goal
+  // does not read and that no action can read or change any more (by a relaxed reachability
+  // analysis that holds its knowledge fixed). Knowledge states with equal keys have the same
+  // plans, so the search and the validator share them. Explicit: `belief` itself.
+  void sharingKey(const Belief& belief, Belief& key);
+  static constexpr std::uint32_t kSettled = 0xffffffffu;
   StateView world(std::uint32_t id) const { return evaluator_.view(worlds_.get(id)); }
   AttachmentRuntime& attachments() { return *attachments_; }
 
@@ -124,6 +130,9 @@ class KnowledgeTask {
   std::uint32_t internLocal(Belief& localWorlds);
   void compose(const Belief& belief, int component, std::uint32_t local);
   void setUpFactoring(KnowledgeRepresentation representation);
+  void setUpSettling();
+  bool relaxedApplicable(const Condition& precondition, const Belief& belief);
+  bool knowledgeLiteralHolds(AtomId atom, const Belief& belief);
   bool applyInWorlds(int op, const Belief& belief, Belief& out, bool effectApplicators);
   bool fluentKnown(FluentId fluent, const Belief& belief);
   bool holdsAtoms(const Condition& condition, const Belief& belief);
@@ -184,6 +193,13 @@ class KnowledgeTask {
   Belief sample_;                        // heuristicWorlds' answer
   Belief local_;                         // scratch local world set
   std::vector<std::uint64_t> composed_;  // scratch world composed from a factored state
+  // Settled components (sharingKey).
+  std::vector<int> ownerOf_;  // per atom: component its value or knowledge is of, or -1
+  std::vector<std::vector<int>> opReadsOrWrites_;  // per operator: components
+  std::vector<char> unsettled_;                    // per component, scratch
+  std::vector<char> canBeTrue_;                    // per atom, scratch of the relaxed reachability
+  std::vector<char> canBeFalse_;
+  std::vector<char> reached_;  // per operator, scratch
 };
 
 }  // namespace kaboum::symbolic
