@@ -11,6 +11,7 @@
 #include "kaboum/core/error.hpp"
 #include "kaboum/scenarios/force_sensing.hpp"
 #include "kaboum/scenarios/toy_geometry.hpp"
+#include "kaboum/scenarios/unknown_roads.hpp"
 #include "kaboum/symbolic/sexpr.hpp"
 #include "symbolic_test_support.hpp"
 
@@ -157,6 +158,36 @@ TEST(FactoredKnowledge, SettledComponentsShareSubPlansExactly) {
   expectValid(factored, shared, explicitTask, "force sensing 8, explicit check");
 }
 
+TEST(FactoredKnowledge, TwentyUnknownRoadsGiveALinearDagThatExecutesInEveryWorld) {
+  const ContingentProblem contingent =
+      parseContingent(scenarios::unknownRoadsDomain(), "roads-domain",
+                      scenarios::unknownRoadsProblem(20), "roads-20");
+  KnowledgeTask task(contingent, ProcedureRegistry{});
+  EXPECT_EQ(task.componentCount(), 20);
+  const ContingentResult result = testing::solveAndValidate(task);
+  ASSERT_EQ(result.status, PlannerStatus::Solved);
+  const TreeMetrics metrics = measure(result.plan);
+  EXPECT_EQ(metrics.leaves, std::ldexp(1.0, 20));
+  EXPECT_LT(metrics.dagNodes, 200u);
+  // Every road blocked, every road clear, and alternating: the vehicle arrives each time.
+  const PlanTree plan = parsePlanTree(formatPlanTree(task, result.plan), "plan", task);
+  for (const int pattern : {0, 1, 2}) {
+    std::string clear;
+    for (int i = 1; i <= 20; ++i) {
+      if (pattern == 1 || (pattern == 2 && i % 2 == 0))
+        clear += " (clear r" + std::to_string(i) + ")";
+    }
+    for (int i = 1; i <= 20; ++i) {
+      clear += " (clear a" + std::to_string(i) + ") (clear b" + std::to_string(i) + ")";
+    }
+    const auto hidden =
+        parseHidden("(define (problem h) (:hidden (at l0)" + clear + "))", "h", contingent);
+    const Execution run = executePlanTree(task, plan, task.hiddenWorld(hidden[0], "h"));
+    EXPECT_TRUE(run.reachedGoal) << "pattern " << pattern << ": " << run.message;
+  }
+  EXPECT_THROW(scenarios::unknownRoadsProblem(0), InputError);
+}
+
 const std::string kCoupledDomain = R"((define (domain coupled)
   (:predicates (a) (b) (c) (done))
   (:action look-a :observe (a))
@@ -207,6 +238,14 @@ TEST(FactoredKnowledge, FactoredIsRefusedWhereItWouldNotBeExact) {
 }
 
 TEST(FactoredKnowledge, CliChoosesTheRepresentation) {
+  const std::string dir =
+      std::filesystem::path(testing::writeTempFile("roads.keep", "")).parent_path().string();
+  ASSERT_EQ(runCli("unknown-roads 4 --quiet --out-dir " + dir).exitCode, 0);
+  const auto roads = runCli("contingent " + dir + "/unknown-roads-domain.pddl " + dir +
+                            "/unknown-roads-4.pddl --json");
+  EXPECT_EQ(roads.exitCode, 0) << roads.output;
+  EXPECT_NE(roads.output.find("\"knowledge\": \"factored\""), std::string::npos) << roads.output;
+  EXPECT_NE(roads.output.find("\"components\": 4"), std::string::npos) << roads.output;
   const std::string d = contingentPath("doors/d.pddl");
   const std::string p = contingentPath("doors/p.pddl");
   const auto automatic = runCli("contingent " + d + " " + p + " --plan-out /dev/null");
