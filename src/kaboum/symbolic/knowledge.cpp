@@ -797,7 +797,7 @@ void KnowledgeTask::applyFactored(int op, const Belief& belief, Belief& out,
   local_.clear();
   storeForgetting(local_, coreMask_);
   out.front() = local_.front();
-  Belief next;
+  Belief& next = splitWorlds_[0];
   for (const int c : touched_[op]) {
     next.clear();
     for (const std::uint32_t w : localWorlds_[belief[static_cast<std::size_t>(c) + 1]]) {
@@ -850,8 +850,10 @@ void KnowledgeTask::splitFactored(AtomId atom, const Belief& belief, Belief& onT
     (world(belief.front()).atom(atom) ? onTrue : onFalse) = belief;
     return;
   }
-  Belief trueWorlds;
-  Belief falseWorlds;
+  Belief& trueWorlds = splitWorlds_[0];
+  Belief& falseWorlds = splitWorlds_[1];
+  trueWorlds.clear();
+  falseWorlds.clear();
   for (const std::uint32_t w : localWorlds_[belief[static_cast<std::size_t>(c) + 1]]) {
     (world(w).atom(atom) ? trueWorlds : falseWorlds).push_back(w);
   }

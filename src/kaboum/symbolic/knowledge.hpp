@@ -5,6 +5,7 @@
 // Stored explicitly, or factored into independent components (knowledge_factoring.hpp).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <random>
@@ -190,8 +191,10 @@ class KnowledgeTask {
   std::vector<std::vector<int>> touched_;  // per operator: components its effects change
   std::vector<Belief> localWorlds_;        // per id: sorted world ids of one component
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> localIds_;  // by hash
-  Belief sample_;                        // heuristicWorlds' answer
-  Belief local_;                         // scratch local world set
+  Belief sample_;  // heuristicWorlds' answer
+  Belief local_;   // scratch local world set
+  std::array<Belief, 2>
+      splitWorlds_;  // scratch local world sets of applyFactored and splitFactored
   std::vector<std::uint64_t> composed_;  // scratch world composed from a factored state
   // Settled components (sharingKey).
   std::vector<int> ownerOf_;  // per atom: component its value or knowledge is of, or -1
