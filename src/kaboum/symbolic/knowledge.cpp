@@ -900,8 +900,9 @@ std::uint32_t KnowledgeTask::hiddenWorldFactored(const HiddenState& hidden,
   return store(whole);
 }
 
-// Which component each atom's value or knowledge belongs to, and which components each operator
-// reads (precondition) or writes.
+// Which component each atom's value or knowledge belongs to, which components each operator reads
+// (precondition) or writes, and the index of the relaxed reachability of sharingKey: operators by
+// the plain literal they wait for, and their knowledge literals.
 void KnowledgeTask::setUpSettling() {
   ownerOf_ = factoring_.componentOf;
   for (std::size_t a = 0; a < ownerOf_.size(); ++a) {
@@ -911,12 +912,16 @@ void KnowledgeTask::setUpSettling() {
       }
     }
   }
-  opReadsOrWrites_.resize(task_.operators.size());
-  for (std::size_t o = 0; o < task_.operators.size(); ++o) {
+  const std::size_t atoms = task_.atomNames.size();
+  const std::size_t operators = task_.operators.size();
+  opReadsOrWrites_.resize(operators);
+  waitingFor_.assign(2 * atoms, {});
+  knowledgeLiterals_.resize(operators);
+  for (std::size_t o = 0; o < operators; ++o) {
     const Operator& op = task_.operators[o];
     std::vector<int>& components = opReadsOrWrites_[o];
-    const auto add = [&](const std::vector<AtomId>& atoms) {
-      for (const AtomId a : atoms) {
+    const auto add = [&](const std::vector<AtomId>& list) {
+      for (const AtomId a : list) {
         if (ownerOf_[a] >= 0) components.push_back(ownerOf_[a]);
       }
     };
@@ -934,6 +939,18 @@ void KnowledgeTask::setUpSettling() {
     }
     std::sort(components.begin(), components.end());
     components.erase(std::unique(components.begin(), components.end()), components.end());
+    for (const bool positive : {true, false}) {
+      for (const AtomId a : positive ? op.precondition.positive : op.precondition.negative) {
+        const bool knowledge = kQuery_[a].base != kNotKnowledge || kwBase_[a] != kNotKnowledge ||
+                               kvBase_[a] != kNotKnowledge;
+        if (knowledge) {
+          knowledgeLiterals_[o].push_back({a, positive});
+        } else {
+          waitingFor_[2 * static_cast<std::size_t>(a) + (positive ? 0 : 1)].push_back(
+              static_cast<int>(o));
+        }
+      }
+    }
   }
 }
 
@@ -944,71 +961,91 @@ bool KnowledgeTask::knowledgeLiteralHolds(AtomId atom, const Belief& belief) {
   return kvHolds(atom, belief);
 }
 
-// Whether `precondition` may hold after some actions, in the delete relaxation from `belief` in
-// which settled components keep their knowledge: a knowledge literal of a settled component is
-// read as it is now; other knowledge literals may go either way.
-bool KnowledgeTask::relaxedApplicable(const Condition& precondition, const Belief& belief) {
-  for (const bool positive : {true, false}) {
-    for (const AtomId a : positive ? precondition.positive : precondition.negative) {
-      const bool knowledge = kQuery_[a].base != kNotKnowledge || kwBase_[a] != kNotKnowledge ||
-                             kvBase_[a] != kNotKnowledge;
-      if (knowledge) {
-        const int c = ownerOf_[a];
-        if (c >= 0 && !unsettled_[c] && knowledgeLiteralHolds(a, belief) != positive) return false;
-      } else if (!(positive ? canBeTrue_[a] : canBeFalse_[a])) {
-        return false;
-      }
-    }
-  }
-  return true;
-}
-
+// A delete relaxation from `belief` (an atom may become true if it is true in some world or a
+// reached action adds it; false likewise) in which the components not yet unsettled keep their
+// knowledge: their knowledge literals are read as they are now, the others may go either way.
+// Reaching an action unsettles the components it touches, which only widens the relaxation, so
+// one monotone pass over a worklist finds the fixpoint (a greatest fixpoint of the settled set:
+// an action that would first touch a settled component would have been reached).
 void KnowledgeTask::sharingKey(const Belief& belief, Belief& key) {
   key = belief;
   if (!factored_ || belief.empty()) return;
   summarize(belief);
   unsettled_.assign(static_cast<std::size_t>(factoring_.components), 0);
-  const auto unsettle = [&](AtomId a) {
+  const auto unsettleOwner = [&](AtomId a) {
     if (ownerOf_[a] >= 0) unsettled_[ownerOf_[a]] = 1;
   };
   if (task_.goal.size() == 1) {
-    for (const AtomId a : task_.goal[0].positive) unsettle(a);
-    for (const AtomId a : task_.goal[0].negative) unsettle(a);
+    for (const AtomId a : task_.goal[0].positive) unsettleOwner(a);
+    for (const AtomId a : task_.goal[0].negative) unsettleOwner(a);
   }
   for (const AtomId k : knowledgeAtoms_) {  // a pending observation is still to be branched on
     const AtomId base = kwBase_[k];
     if (base >= 0 && bit(allWorlds_, k) && bit(anyWorld_, base) && !bit(allWorlds_, base)) {
-      unsettle(base);
+      unsettleOwner(base);
     }
   }
+  int open = static_cast<int>(std::count(unsettled_.begin(), unsettled_.end(), 0));
+  if (open == 0) return;
   const std::size_t atoms = task_.atomNames.size();
-  canBeTrue_.resize(atoms);
-  canBeFalse_.resize(atoms);
+  const std::size_t operators = task_.operators.size();
+  reachable_.resize(2 * atoms);
   for (std::size_t a = 0; a < atoms; ++a) {
-    canBeTrue_[a] = bit(anyWorld_, static_cast<AtomId>(a));
-    canBeFalse_[a] = !bit(allWorlds_, static_cast<AtomId>(a));
+    reachable_[2 * a] = bit(anyWorld_, static_cast<AtomId>(a));
+    reachable_[2 * a + 1] = !bit(allWorlds_, static_cast<AtomId>(a));
   }
-  const auto reach = [&](const EffectList& effect) {
-    for (const AtomId a : effect.adds) {
-      canBeTrue_[a] = 1;
-      const AtomId subject = forget_[a].base;
-      if (subject >= 0) canBeTrue_[subject] = canBeFalse_[subject] = 1;
+  // Per operator: plain literals not yet reachable plus knowledge literals of settled components
+  // that fail now; ready at 0.
+  missing_.assign(operators, 0);
+  blockedBy_.resize(static_cast<std::size_t>(factoring_.components));
+  for (std::vector<int>& ops : blockedBy_) ops.clear();
+  for (std::size_t fact = 0; fact < 2 * atoms; ++fact) {
+    if (reachable_[fact]) continue;
+    for (const int o : waitingFor_[fact]) ++missing_[o];
+  }
+  for (std::size_t o = 0; o < operators; ++o) {
+    for (const auto& [a, positive] : knowledgeLiterals_[o]) {
+      const int c = ownerOf_[a];
+      if (c < 0 || unsettled_[c] || knowledgeLiteralHolds(a, belief) == positive) continue;
+      ++missing_[o];
+      blockedBy_[c].push_back(static_cast<int>(o));
     }
-    for (const AtomId a : effect.deletes) canBeFalse_[a] = 1;
+  }
+  worklist_.clear();
+  for (std::size_t o = 0; o < operators; ++o) {
+    if (missing_[o] == 0) worklist_.push_back(static_cast<int>(o));
+  }
+  const auto ready = [&](int o) {
+    if (--missing_[o] == 0) worklist_.push_back(o);
   };
-  // Unsettling a component only widens the relaxation, so one monotone fixpoint suffices.
-  reached_.assign(task_.operators.size(), 0);
-  for (bool changed = true; changed;) {
-    changed = false;
-    for (std::size_t o = 0; o < task_.operators.size(); ++o) {
-      const Operator& op = task_.operators[o];
-      if (reached_[o] || !relaxedApplicable(op.precondition, belief)) continue;
-      reached_[o] = 1;
-      changed = true;
-      for (const int c : opReadsOrWrites_[o]) unsettled_[c] = 1;
-      reach(op.effect);
-      for (const ConditionalEffect& c : op.conditional) reach(c.effect);
+  const auto reach = [&](std::size_t fact) {
+    if (reachable_[fact]) return;
+    reachable_[fact] = 1;
+    for (const int o : waitingFor_[fact]) ready(o);
+  };
+  const auto reachEffects = [&](const EffectList& effect) {
+    for (const AtomId a : effect.adds) {
+      reach(2 * static_cast<std::size_t>(a));
+      const AtomId subject = forget_[a].base;
+      if (subject >= 0) {
+        reach(2 * static_cast<std::size_t>(subject));
+        reach(2 * static_cast<std::size_t>(subject) + 1);
+      }
     }
+    for (const AtomId a : effect.deletes) reach(2 * static_cast<std::size_t>(a) + 1);
+  };
+  while (!worklist_.empty() && open > 0) {
+    const int o = worklist_.back();
+    worklist_.pop_back();
+    for (const int c : opReadsOrWrites_[o]) {
+      if (unsettled_[c]) continue;
+      unsettled_[c] = 1;
+      --open;
+      for (const int blocked : blockedBy_[c]) ready(blocked);
+    }
+    const Operator& op = task_.operators[o];
+    reachEffects(op.effect);
+    for (const ConditionalEffect& c : op.conditional) reachEffects(c.effect);
   }
   for (int c = 0; c < factoring_.components; ++c) {
     if (!unsettled_[c]) key[static_cast<std::size_t>(c) + 1] = kSettled;

@@ -132,7 +132,6 @@ class KnowledgeTask {
   void compose(const Belief& belief, int component, std::uint32_t local);
   void setUpFactoring(KnowledgeRepresentation representation);
   void setUpSettling();
-  bool relaxedApplicable(const Condition& precondition, const Belief& belief);
   bool knowledgeLiteralHolds(AtomId atom, const Belief& belief);
   bool applyInWorlds(int op, const Belief& belief, Belief& out, bool effectApplicators);
   bool fluentKnown(FluentId fluent, const Belief& belief);
@@ -199,10 +198,14 @@ class KnowledgeTask {
   // Settled components (sharingKey).
   std::vector<int> ownerOf_;  // per atom: component its value or knowledge is of, or -1
   std::vector<std::vector<int>> opReadsOrWrites_;  // per operator: components
-  std::vector<char> unsettled_;                    // per component, scratch
-  std::vector<char> canBeTrue_;                    // per atom, scratch of the relaxed reachability
-  std::vector<char> canBeFalse_;
-  std::vector<char> reached_;  // per operator, scratch
+  std::vector<std::vector<int>> waitingFor_;  // per fact (2 atom + 0 true / 1 false): operators
+  std::vector<std::vector<std::pair<AtomId, bool>>> knowledgeLiterals_;  // per operator
+  // Scratch of sharingKey: per component, per fact, per operator.
+  std::vector<char> unsettled_;
+  std::vector<std::vector<int>> blockedBy_;
+  std::vector<char> reachable_;
+  std::vector<int> missing_;
+  std::vector<int> worklist_;
 };
 
 }  // namespace kaboum::symbolic
