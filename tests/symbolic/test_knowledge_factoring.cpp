@@ -259,6 +259,17 @@ TEST(FactoredKnowledge, CliChoosesTheRepresentation) {
   const auto bad = runCli("contingent " + d + " " + p + " --knowledge lazy");
   EXPECT_EQ(bad.exitCode, 2) << bad.output;
   EXPECT_NE(bad.output.find("--knowledge"), std::string::npos) << bad.output;
+  const auto inexact =
+      runCli("contingent " + contingentPath("scenarios/bartender-domain.pddl") + " " +
+             contingentPath("scenarios/bartender-4.pddl") + " --toy-geometry --knowledge factored");
+  EXPECT_EQ(inexact.exitCode, 2) << inexact.output;
+  EXPECT_NE(inexact.output.find("bartender-4.pddl: factored knowledge is not exact for this "
+                                "problem: the task calls semantic attachments"),
+            std::string::npos)
+      << inexact.output;
+  const auto noLegs = runCli("unknown-roads 0 --quiet --out-dir " + dir);
+  EXPECT_EQ(noLegs.exitCode, 2) << noLegs.output;
+  EXPECT_NE(noLegs.output.find("n must be at least 1"), std::string::npos) << noLegs.output;
 }
 
 }  // namespace
