@@ -24,6 +24,7 @@ struct ContingentCliOptions {
   std::string problem;
   std::string planOut;
   std::size_t maxWorlds = std::size_t{1} << 18;
+  std::string knowledge = "auto";
   bool json = false;
   bool quiet = false;
   bool toyGeometry = false;
@@ -37,7 +38,8 @@ int runContingent(const ContingentCliOptions& options) {
   printWarnings(contingent.problem.warnings);
   const symbolic::ProcedureRegistry procedures =
       options.toyGeometry ? scenarios::toyGeometryProcedures() : symbolic::ProcedureRegistry{};
-  symbolic::KnowledgeTask task(contingent, procedures, options.maxWorlds);
+  symbolic::KnowledgeTask task(contingent, procedures, options.maxWorlds,
+                               symbolic::parseKnowledgeRepresentation(options.knowledge));
   const symbolic::ContingentResult result = symbolic::solveContingent(task, options.search);
   const bool solved = result.status == PlannerStatus::Solved;
   const symbolic::TreeMetrics metrics = symbolic::measure(result.plan);
@@ -60,9 +62,11 @@ int runContingent(const ContingentCliOptions& options) {
                   << " leaf/leaves, depth " << metrics.depth << ", " << metrics.dagNodes
                   << " distinct node(s)";
       }
-      std::cerr << "; " << task.initialBelief().size() << " initial world(s), " << stats.expanded
-                << " expanded, " << stats.beliefs << " knowledge states; search " << stats.seconds
-                << " s\n";
+      std::cerr << "; " << task.possibleWorlds(task.initialBelief()) << " initial world(s) ("
+                << (task.factored() ? std::to_string(task.componentCount()) + " components"
+                                    : std::string("explicit"))
+                << "), " << stats.expanded << " expanded, " << stats.beliefs
+                << " knowledge states; search " << stats.seconds << " s\n";
     }
   }
   return solved ? 0 : 1;
@@ -92,6 +96,12 @@ VerbRunner setupContingent(CLI::App& command) {
   command
       .add_option("--max-worlds", options->maxWorlds, "Maximum number of possible initial worlds")
       ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command
+      .add_option("--knowledge", options->knowledge,
+                  "Knowledge states: auto (factored when exact and there are independent "
+                  "unknowns), explicit (sets of worlds) or factored (docs/contingent.md)")
+      ->check(CLI::IsMember({"auto", "explicit", "factored"}))
       ->capture_default_str();
   command.add_flag("--toy-geometry", options->toyGeometry,
                    "Register the toy `reaches` attachment of the Bartender and Bimanual Assembly "

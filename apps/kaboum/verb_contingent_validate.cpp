@@ -23,6 +23,7 @@ struct ValidateOptions {
   std::string plan;
   std::string hidden;
   std::uint64_t seed = 0;
+  std::string knowledge = "auto";
   bool json = false;
   bool toyGeometry = false;
 };
@@ -34,7 +35,8 @@ int runValidate(const ValidateOptions& options) {
   printWarnings(contingent.problem.warnings);
   const symbolic::ProcedureRegistry procedures =
       options.toyGeometry ? scenarios::toyGeometryProcedures() : symbolic::ProcedureRegistry{};
-  symbolic::KnowledgeTask task(contingent, procedures);
+  symbolic::KnowledgeTask task(contingent, procedures, std::size_t{1} << 18,
+                               symbolic::parseKnowledgeRepresentation(options.knowledge));
   const symbolic::PlanTree plan =
       symbolic::parsePlanTree(symbolic::readTextFile(options.plan), options.plan, task);
   const symbolic::TreeValidation validation = symbolic::validatePlanTree(task, plan, options.plan);
@@ -88,6 +90,11 @@ VerbRunner setupValidate(CLI::App& command) {
   command
       .add_option("--seed", options->seed,
                   "Seed of nature's choices of non-deterministic effects in those executions")
+      ->capture_default_str();
+  command
+      .add_option("--knowledge", options->knowledge,
+                  "Knowledge states: auto, explicit or factored (docs/contingent.md)")
+      ->check(CLI::IsMember({"auto", "explicit", "factored"}))
       ->capture_default_str();
   command.add_flag("--toy-geometry", options->toyGeometry,
                    "Register the toy `reaches` attachment of the scenarios");

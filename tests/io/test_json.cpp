@@ -302,11 +302,13 @@ TEST(SymbolicJson, ContingentPlanTreeReadsBackAsTheSameTree) {
   const TreeMetrics metrics = measure(result.plan);
 
   const nlohmann::json json = toJson(task, result);
-  EXPECT_EQ(keysOf(json), sorted({"status", "plan", "tree", "initial_worlds", "operators",
-                                  "expanded", "generated", "evaluated", "dead_ends", "reused",
-                                  "knowledge_states", "worlds", "seconds"}));
+  EXPECT_EQ(keysOf(json), sorted({"status", "plan", "tree", "initial_worlds", "knowledge",
+                                  "components", "operators", "expanded", "generated", "evaluated",
+                                  "dead_ends", "reused", "knowledge_states", "worlds", "seconds"}));
   EXPECT_EQ(json.at("status"), "solved");
-  EXPECT_EQ(json.at("initial_worlds"), task.initialBelief().size());
+  EXPECT_EQ(json.at("initial_worlds"), task.possibleWorlds(task.initialBelief()));
+  EXPECT_EQ(json.at("knowledge"), task.factored() ? "factored" : "explicit");
+  EXPECT_EQ(json.at("components"), task.componentCount());
   EXPECT_EQ(json.at("operators"), task.task().operators.size());
   EXPECT_EQ(json.at("knowledge_states"), result.statistics.beliefs);
   EXPECT_EQ(json.at("tree"), toJson(metrics));

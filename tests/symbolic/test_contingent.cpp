@@ -85,19 +85,24 @@ TEST(Knowledge, ClassicalProblemIsTheClosedWorldSpecialCase) {
 TEST(Knowledge, OneOfAndOrConstrainTheInitialWorlds) {
   const std::string domain = R"((define (domain d) (:predicates (a) (b) (c) (g))
     (:action s :observe (a)) (:action t :observe (b)) (:action go :precondition (c) :effect (g))))";
-  const auto worlds = [&](const std::string& init) {
-    const ContingentProblem contingent =
-        parseTexts(domain, "(define (problem p) (:domain d) (:init " + init + ") (:goal (g)))");
-    return KnowledgeTask(contingent, ProcedureRegistry{}).initialBelief().size();
-  };
-  EXPECT_EQ(worlds("(c)"), 1u);
-  EXPECT_EQ(worlds("(unknown (a)) (unknown (b))"), 4u);
-  EXPECT_EQ(worlds("(oneof (a) (b))"), 2u);
-  EXPECT_EQ(worlds("(oneof (a) (b) (c))"), 3u);
-  EXPECT_EQ(worlds("(or (a) (b))"), 3u);
-  EXPECT_EQ(worlds("(or (not (a)) (b)) (unknown (a))"), 3u);
-  EXPECT_EQ(worlds("(a) (oneof (a) (b))"), 1u);  // a known true forces b false
-  EXPECT_EQ(worlds("(and (unknown (a)) (oneof (b) (c)))"), 4u);
+  // The same counts whether the worlds are explicit or factored into independent components.
+  for (const KnowledgeRepresentation representation :
+       {KnowledgeRepresentation::Explicit, KnowledgeRepresentation::Factored}) {
+    const auto worlds = [&](const std::string& init) {
+      const ContingentProblem contingent =
+          parseTexts(domain, "(define (problem p) (:domain d) (:init " + init + ") (:goal (g)))");
+      KnowledgeTask task(contingent, ProcedureRegistry{}, 1000, representation);
+      return task.possibleWorlds(task.initialBelief());
+    };
+    EXPECT_EQ(worlds("(c)"), 1.0);
+    EXPECT_EQ(worlds("(unknown (a)) (unknown (b))"), 4.0);
+    EXPECT_EQ(worlds("(oneof (a) (b))"), 2.0);
+    EXPECT_EQ(worlds("(oneof (a) (b) (c))"), 3.0);
+    EXPECT_EQ(worlds("(or (a) (b))"), 3.0);
+    EXPECT_EQ(worlds("(or (not (a)) (b)) (unknown (a))"), 3.0);
+    EXPECT_EQ(worlds("(a) (oneof (a) (b))"), 1.0);  // a known true forces b false
+    EXPECT_EQ(worlds("(and (unknown (a)) (oneof (b) (c)))"), 4.0);
+  }
 }
 
 TEST(Knowledge, ConstantsMayComeBeforeTheirTypes) {
@@ -341,7 +346,8 @@ TEST(ForceSensing, TwoContainersGiveTheBranchedPlanOfFigure32) {
   const ContingentProblem contingent =
       parseContingent(forceSensingDomain(), "fs-domain", forceSensingProblem(2), "fs-2");
   KnowledgeTask task(contingent, ProcedureRegistry{});
-  EXPECT_EQ(task.initialBelief().size(), 4u);
+  EXPECT_EQ(task.possibleWorlds(task.initialBelief()), 4.0);
+  EXPECT_TRUE(task.factored());  // two independent unknowns
   const ContingentResult result = solveAndValidate(task);
   ASSERT_EQ(result.status, PlannerStatus::Solved);
   const TreeMetrics metrics = measure(result.plan);
@@ -711,7 +717,11 @@ TEST(ContingentBadInput, HiddenStateOutsideTheInitialKnowledge) {
 TEST(ContingentBadInput, TooManyInitialWorldsIsAnError) {
   const ContingentProblem contingent =
       parseContingent(forceSensingDomain(), "fs-domain", forceSensingProblem(12), "fs-12");
-  EXPECT_THROW(KnowledgeTask(contingent, ProcedureRegistry{}, 1000), InputError);
+  EXPECT_THROW(
+      KnowledgeTask(contingent, ProcedureRegistry{}, 1000, KnowledgeRepresentation::Explicit),
+      InputError);
+  // Factored, the limit is per component: 12 components of 2 worlds each.
+  EXPECT_NO_THROW(KnowledgeTask(contingent, ProcedureRegistry{}, 1000));
 }
 
 }  // namespace

@@ -100,7 +100,9 @@ nlohmann::json toJson(const KnowledgeTask& task, const ContingentResult& result)
   out.update({{"status", toJson(result.status)},
               {"plan", toJson(task, result.plan)},
               {"tree", toJson(measure(result.plan))},
-              {"initial_worlds", task.initialBelief().size()},
+              {"initial_worlds", task.possibleWorlds(task.initialBelief())},
+              {"knowledge", task.factored() ? "factored" : "explicit"},
+              {"components", task.componentCount()},
               {"operators", task.task().operators.size()}});
   return out;
 }

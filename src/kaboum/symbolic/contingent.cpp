@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <deque>
 #include <functional>
 #include <iomanip>
 #include <limits>
@@ -156,10 +157,16 @@ class AndOrSearch {
     std::vector<Outcome> outcomes;
   };
 
+  // Knowledge states with the same sharing key (equal up to settled components, factored
+  // knowledge) share one id, whose plan is that of the first one seen.
   int intern(Belief&& belief) {
-    const auto [it, added] = ids_.try_emplace(std::move(belief), static_cast<int>(beliefs_.size()));
+    if (task_.factored()) task_.sharingKey(belief, key_);
+    const bool keyed = task_.factored() && key_ != belief;
+    const auto [it, added] = ids_.try_emplace(keyed ? std::move(key_) : std::move(belief),
+                                              static_cast<int>(beliefs_.size()));
     if (added) {
-      beliefs_.push_back(&it->first);
+      if (keyed) representatives_.push_back(std::move(belief));
+      beliefs_.push_back(keyed ? &representatives_.back() : &it->first);
       solved_.push_back(-1);
       state_.push_back(kOpen);
     }
@@ -180,7 +187,7 @@ class AndOrSearch {
 
   int worstValue(const Belief& belief, Heuristic& estimate, std::vector<int>& cache) {
     int worst = 0;
-    for (const std::uint32_t w : belief) {
+    for (const std::uint32_t w : task_.heuristicWorlds(belief)) {
       if (w >= cache.size()) cache.resize(task_.worldCount(), -1);
       if (cache[w] < 0) {
         cache[w] = estimate.evaluate(task_.world(w), nullptr);
@@ -512,6 +519,8 @@ class AndOrSearch {
   double nextProgress_;  // seconds
   std::unordered_map<Belief, int, BeliefHash> ids_;
   std::vector<const Belief*> beliefs_;
+  std::deque<Belief> representatives_;  // of the ids whose key is not the knowledge state itself
+  Belief key_;
   std::vector<int> solved_;  // plan node of each solved knowledge state, -1 otherwise
   std::vector<char> state_;
   std::vector<int> worldValue_;
@@ -849,7 +858,8 @@ PlanTree parsePlanTree(std::string_view text, const std::string& file, const Kno
 TreeValidation validatePlanTree(KnowledgeTask& task, const PlanTree& plan, const std::string& file,
                                 const Deadline* deadline) {
   TreeValidation out;
-  std::set<std::pair<int, Belief>> checked;
+  std::set<std::pair<int, Belief>> checked;  // by sharing key: equal keys have the same plans
+  Belief key;
   std::vector<char> onPath(plan.nodes.size(), 0);
   const auto at = [&](const PlanTree::Node& node, const std::string& what) {
     return locate(file, what, node.pos.line, node.pos.column);
@@ -865,7 +875,8 @@ TreeValidation validatePlanTree(KnowledgeTask& task, const PlanTree& plan, const
         failure = at(node, "the plan loops back to an earlier step");
         break;
       }
-      if (!checked.insert({index, belief}).second) break;
+      task.sharingKey(belief, key);
+      if (!checked.insert({index, key}).second) break;
       onPath[index] = 1;
       path.push_back(index);
       if (node.kind == PlanTree::Node::Kind::Goal) {

@@ -25,7 +25,8 @@ void setBit(std::span<std::uint64_t> words, AtomId atom, bool value) {
 }  // namespace
 
 KnowledgeTask::KnowledgeTask(const ContingentProblem& contingent,
-                             const ProcedureRegistry& procedures, std::size_t maxWorlds)
+                             const ProcedureRegistry& procedures, std::size_t maxWorlds,
+                             KnowledgeRepresentation representation)
     : contingent_(contingent),
       attachments_(
           std::make_unique<AttachmentRuntime>(contingent.domain, contingent.problem, procedures)),
@@ -88,6 +89,8 @@ KnowledgeTask::KnowledgeTask(const ContingentProblem& contingent,
   }
   if (task_.goal.size() == 1) goalTests_ = testsOnly(task_.goal[0]);
   scratch_.resize(evaluator_.layout().words());
+  composed_.resize(scratch_.size());
+  setUpFactoring(representation);
   enumerateWorlds(maxWorlds);
   checkGoalKnowable();
 }
@@ -169,43 +172,126 @@ void KnowledgeTask::enumerateWorlds(std::size_t maxWorlds) {
     }
     return (clause.exactlyOne && trueCount > 1) || (trueCount == 0 && open == 0);
   };
-  std::vector<std::uint64_t> world(base.size());
-  const std::function<void(std::size_t)> assign = [&](std::size_t index) {
-    if (index == variables.size()) {
-      std::copy(base.begin(), base.end(), world.begin());
-      for (std::size_t a = 0; a < fixed.size(); ++a) {
-        if (fixed[a] == 1) setBit(world, static_cast<AtomId>(a), true);
-      }
-      for (const AtomId atom : variables) setBit(world, atom, value[atom] == 1);
-      initial_.push_back(store(world));
-      if (initial_.size() > maxWorlds) {
-        throw InputError(locate(file,
-                                "the initial knowledge admits more than " +
-                                    std::to_string(maxWorlds) + " possible worlds",
-                                contingent_.initPos.line, contingent_.initPos.column));
-      }
-      return;
-    }
-    const AtomId atom = variables[index];
-    for (const std::int8_t candidate : {std::int8_t{0}, std::int8_t{1}}) {
-      if (fixed[atom] >= 0 && fixed[atom] != candidate) continue;
-      value[atom] = candidate;
-      bool ok = true;
-      for (const int c : clausesOf[atom]) ok = ok && !violated(clauses[c]);
-      if (ok) assign(index + 1);
-    }
-    value[atom] = -1;
-  };
-  assign(0);
-  if (initial_.empty()) {
-    throw InputError(locate(file,
-                            "contradictory initial knowledge: no world satisfies the 'oneof', "
-                            "'or' and known atoms of :init",
-                            contingent_.initPos.line, contingent_.initPos.column));
+  for (std::size_t a = 0; a < fixed.size(); ++a) {
+    if (fixed[a] == 1) setBit(base, static_cast<AtomId>(a), true);
   }
-  std::sort(initial_.begin(), initial_.end());
-  initial_.erase(std::unique(initial_.begin(), initial_.end()), initial_.end());
+  // Every assignment to `atoms` that no clause forbids, on top of `base` restricted to `mask`
+  // (none: the whole world), into `out`.
+  std::vector<std::uint64_t> world(base.size());
+  const auto enumerate = [&](std::span<const AtomId> atoms, std::span<const std::uint64_t> mask,
+                             Belief& out) {
+    const std::function<void(std::size_t)> assign = [&](std::size_t index) {
+      if (index == atoms.size()) {
+        for (std::size_t i = 0; i < world.size(); ++i) {
+          world[i] = mask.empty() ? base[i] : base[i] & mask[i];
+        }
+        for (const AtomId atom : atoms) setBit(world, atom, value[atom] == 1);
+        out.push_back(store(world));
+        if (out.size() > maxWorlds) {
+          throw InputError(locate(file,
+                                  "the initial knowledge admits more than " +
+                                      std::to_string(maxWorlds) + " possible worlds" +
+                                      (mask.empty() ? "" : " in one independent component"),
+                                  contingent_.initPos.line, contingent_.initPos.column));
+        }
+        return;
+      }
+      const AtomId atom = atoms[index];
+      for (const std::int8_t candidate : {std::int8_t{0}, std::int8_t{1}}) {
+        if (fixed[atom] >= 0 && fixed[atom] != candidate) continue;
+        value[atom] = candidate;
+        bool ok = true;
+        for (const int c : clausesOf[atom]) ok = ok && !violated(clauses[c]);
+        if (ok) assign(index + 1);
+      }
+      value[atom] = -1;
+    };
+    assign(0);
+    if (out.empty()) {
+      throw InputError(locate(file,
+                              "contradictory initial knowledge: no world satisfies the 'oneof', "
+                              "'or' and known atoms of :init",
+                              contingent_.initPos.line, contingent_.initPos.column));
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+  };
+  if (!factored_) {
+    enumerate(variables, {}, initial_);
+    canonicalize(initial_);
+    return;
+  }
+  Belief core;
+  enumerate({}, coreMask_, core);
+  initial_.push_back(core.front());
+  for (int c = 0; c < factoring_.components; ++c) {
+    std::vector<AtomId> atoms;
+    for (const AtomId atom : variables) {
+      if (factoring_.componentOf[atom] == c) atoms.push_back(atom);
+    }
+    local_.clear();
+    enumerate(atoms, componentMask_[c], local_);
+    initial_.push_back(internLocal(local_));
+  }
   canonicalize(initial_);
+}
+
+// Chooses the representation and, when factored, the atoms of the core and of each component and
+// the components each operator changes.
+void KnowledgeTask::setUpFactoring(KnowledgeRepresentation representation) {
+  if (representation == KnowledgeRepresentation::Explicit) return;
+  std::vector<std::vector<AtomId>> correlated;
+  for (const KnowledgeConstraint& constraint : contingent_.constraints) {
+    if (constraint.kind == KnowledgeConstraint::Kind::KnownFalse) continue;
+    std::vector<AtomId> group;
+    for (const InitialLiteral& literal : constraint.literals) {
+      const AtomId id = findAtom(describeAtom(contingent_.domain, contingent_.problem,
+                                              literal.atom.predicate, literal.atom.args));
+      if (id >= 0) group.push_back(id);
+    }
+    if (!group.empty()) correlated.push_back(std::move(group));
+  }
+  std::vector<AtomId> forgetBase(task_.atomNames.size(), -1);
+  for (const AtomId marker : forgetAtoms_) forgetBase[marker] = forget_[marker].base;
+  factoring_ = factorKnowledge(task_, correlated, forgetBase);
+  if (representation == KnowledgeRepresentation::Factored && !factoring_.inexact.empty()) {
+    throw InputError(
+        locate(contingent_.problem.file, "factored knowledge is not exact for this problem: " +
+                                             factoring_.inexact + " (use explicit)"));
+  }
+  factored_ = factoring_.inexact.empty() &&
+              (representation == KnowledgeRepresentation::Factored || factoring_.components >= 2);
+  if (!factored_) return;
+  const std::size_t words = evaluator_.layout().words();
+  coreMask_.assign(words, ~std::uint64_t{0});
+  componentMask_.assign(static_cast<std::size_t>(factoring_.components),
+                        std::vector<std::uint64_t>(words, 0));
+  for (std::size_t a = 0; a < task_.atomNames.size(); ++a) {
+    const int c = factoring_.componentOf[a];
+    if (c < 0) continue;
+    setBit(coreMask_, static_cast<AtomId>(a), false);
+    setBit(componentMask_[c], static_cast<AtomId>(a), true);
+  }
+  touched_.resize(task_.operators.size());
+  for (std::size_t o = 0; o < task_.operators.size(); ++o) {
+    std::vector<int>& touched = touched_[o];
+    const auto mark = [&](const EffectList& effect) {
+      for (const std::vector<AtomId>* list : {&effect.adds, &effect.deletes}) {
+        for (const AtomId a : *list) {
+          for (const AtomId changed : {a, forgetBase[a]}) {
+            if (changed >= 0 && factoring_.componentOf[changed] >= 0) {
+              touched.push_back(factoring_.componentOf[changed]);
+            }
+          }
+        }
+      }
+    };
+    mark(task_.operators[o].effect);
+    for (const ConditionalEffect& c : task_.operators[o].conditional) mark(c.effect);
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  }
+  setUpSettling();
 }
 
 // A goal atom that is unknown initially, that no operator changes and that no operator observes
@@ -352,6 +438,7 @@ bool KnowledgeTask::allWorlds(const Condition& tests, const Belief& belief) {
 }
 
 bool KnowledgeTask::holds(const Condition& condition, const Belief& belief) {
+  if (factored_) return holdsAtoms(condition, belief);  // factored conditions have no tests
   return holdsAtoms(condition, belief) &&
          std::all_of(belief.begin(), belief.end(),
                      [&](std::uint32_t w) { return evaluator_.holds(condition, world(w)); });
@@ -419,6 +506,10 @@ bool KnowledgeTask::callsEffectApplicator(int op) const {
 
 bool KnowledgeTask::applyInWorlds(int op, const Belief& belief, Belief& out,
                                   bool effectApplicators) {
+  if (factored_ && !belief.empty()) {
+    applyFactored(op, belief, out, effectApplicators);
+    return true;  // a factored task calls no attachments, so nothing is infeasible
+  }
   out.clear();
   for (const std::uint32_t w : belief) {
     if (!evaluator_.apply(task_.operators[op], world(w), scratch_, effectApplicators)) {
@@ -438,6 +529,26 @@ void KnowledgeTask::summarize(const Belief& belief) {
   if (summarized_ == belief && !anyWorld_.empty()) return;
   summarized_ = belief;
   const std::size_t words = evaluator_.layout().atomBitset(1);
+  if (factored_ && !belief.empty()) {
+    // Components have disjoint atoms, zero in the core: unions and intersections per component.
+    const std::uint64_t* core = world(belief.front()).words();
+    anyWorld_.assign(core, core + words);
+    allWorlds_.assign(core, core + words);
+    for (int c = 0; c < factoring_.components; ++c) {
+      const Belief& locals = localWorlds_[belief[static_cast<std::size_t>(c) + 1]];
+      for (std::size_t i = 0; i < words; ++i) {
+        std::uint64_t any = 0;
+        std::uint64_t all = componentMask_[c][i];
+        for (const std::uint32_t w : locals) {
+          any |= world(w).words()[i];
+          all &= world(w).words()[i];
+        }
+        anyWorld_[i] |= any;
+        allWorlds_[i] |= all;
+      }
+    }
+    return;
+  }
   anyWorld_.assign(words, 0);
   allWorlds_.assign(words, ~std::uint64_t{0});
   for (const std::uint32_t w : belief) {
@@ -451,6 +562,10 @@ void KnowledgeTask::summarize(const Belief& belief) {
 
 // Drops Kw/Kv atoms whose subject is known anyway, so equal knowledge has one representation.
 void KnowledgeTask::canonicalize(Belief& belief) {
+  if (factored_ && !belief.empty()) {
+    canonicalizeFactored(belief);
+    return;
+  }
   summarize(belief);
   bool changed = false;
   for (const AtomId k : knowledgeAtoms_) {
@@ -490,12 +605,17 @@ AtomId KnowledgeTask::pendingObservation(const Belief& belief) {
 // kf-del-not) gains a twin where p is false (true), so K(p) (K(¬p)) no longer holds. A
 // non-deterministic effect's marker (nondet-del.… / nondet-add.…) adds the same twins: the twin
 // is the world where the effect took place.
-void KnowledgeTask::storeForgetting(Belief& out) {
+// With a `mask`, the world is stored restricted to it and only subjects inside it are forgotten.
+void KnowledgeTask::storeForgetting(Belief& out, std::span<const std::uint64_t> mask) {
   forgotten_.clear();
   for (const AtomId marker : forgetAtoms_) {
     if (!bit(scratch_, marker)) continue;
     setBit(scratch_, marker, false);
-    forgotten_.push_back(marker);
+    const AtomId base = forget_[marker].base;
+    if (mask.empty() || (base >= 0 && bit(mask, base))) forgotten_.push_back(marker);
+  }
+  if (!mask.empty()) {
+    for (std::size_t i = 0; i < scratch_.size(); ++i) scratch_[i] &= mask[i];
   }
   const std::size_t first = out.size();
   out.push_back(store(scratch_));
@@ -513,6 +633,10 @@ void KnowledgeTask::storeForgetting(Belief& out) {
 }
 
 void KnowledgeTask::split(AtomId atom, const Belief& belief, Belief& onTrue, Belief& onFalse) {
+  if (factored_ && !belief.empty()) {
+    splitFactored(atom, belief, onTrue, onFalse);
+    return;
+  }
   onTrue.clear();
   onFalse.clear();
   for (const std::uint32_t w : belief) (world(w).atom(atom) ? onTrue : onFalse).push_back(w);
@@ -521,6 +645,7 @@ void KnowledgeTask::split(AtomId atom, const Belief& belief, Belief& onTrue, Bel
 }
 
 std::uint32_t KnowledgeTask::hiddenWorld(const HiddenState& hidden, const std::string& file) {
+  if (factored_) return hiddenWorldFactored(hidden, file);
   std::fill(scratch_.begin(), scratch_.end(), 0);
   std::copy_n(world(initial_.front()).words(), scratch_.size(), scratch_.begin());
   // Atoms that differ between initial worlds are the uncertain ones: start them all false.
@@ -579,6 +704,11 @@ std::uint32_t KnowledgeTask::applyIn(int op, std::uint32_t w, std::uint32_t samp
 }
 
 std::uint64_t KnowledgeTask::symbolicKey(const Belief& belief) {
+  if (factored_) {  // no attachments: the ids are the knowledge
+    std::uint64_t h = 1469598103934665603ull;
+    for (const std::uint32_t id : belief) h = (h ^ id) * 1099511628211ull;
+    return h;
+  }
   if (attachmentWritten_.empty()) {
     attachmentWritten_.assign(task_.fluentNames.size() + 1, false);  // +1: never empty again
     for (const GroundModuleCall& call : task_.moduleCalls) {
@@ -608,6 +738,324 @@ std::uint64_t KnowledgeTask::symbolicKey(const Belief& belief) {
     key += term;
   }
   return key;
+}
+
+// Factored knowledge states -----------------------------------------------------------------
+
+double KnowledgeTask::possibleWorlds(const Belief& belief) const {
+  if (!factored_ || belief.empty()) return static_cast<double>(belief.size());
+  double product = 1.0;
+  for (std::size_t c = 1; c < belief.size(); ++c) {
+    product *= static_cast<double>(localWorlds_[belief[c]].size());
+  }
+  return product;
+}
+
+std::uint32_t KnowledgeTask::internLocal(Belief& localWorlds) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (const std::uint32_t w : localWorlds) h = (h ^ w) * 1099511628211ull;
+  std::vector<std::uint32_t>& bucket = localIds_[h];
+  for (const std::uint32_t id : bucket) {
+    if (localWorlds_[id] == localWorlds) return id;
+  }
+  const auto id = static_cast<std::uint32_t>(localWorlds_.size());
+  localWorlds_.push_back(localWorlds);
+  bucket.push_back(id);
+  return id;
+}
+
+// `composed_` := the core of `belief` with local world `local` of `component` (none if -1) and the
+// first local world of each other component when `component` is -1 or for heuristicWorlds.
+void KnowledgeTask::compose(const Belief& belief, int component, std::uint32_t local) {
+  const std::uint64_t* core = world(belief.front()).words();
+  std::copy_n(core, composed_.size(), composed_.begin());
+  const auto add = [&](std::uint32_t w) {
+    const std::uint64_t* words = world(w).words();
+    for (std::size_t i = 0; i < composed_.size(); ++i) composed_[i] |= words[i];
+  };
+  for (int c = 0; c < factoring_.components; ++c) {
+    add(c == component ? local : localWorlds_[belief[static_cast<std::size_t>(c) + 1]].front());
+  }
+}
+
+const Belief& KnowledgeTask::heuristicWorlds(const Belief& belief) {
+  if (!factored_ || belief.empty()) return belief;
+  sample_.clear();
+  for (int c = 0; c < factoring_.components; ++c) {
+    const Belief& locals = localWorlds_[belief[static_cast<std::size_t>(c) + 1]];
+    for (std::size_t j = c == 0 ? 0 : 1; j < locals.size(); ++j) {
+      compose(belief, c, locals[j]);
+      sample_.push_back(store(composed_));
+    }
+  }
+  return sample_;
+}
+
+// An operator's effect on a component depends only on the core and that component's atoms
+// (knowledge_factoring.hpp), so it is applied to each local world once, with the core; the core's
+// successor is the same in every world.
+void KnowledgeTask::applyFactored(int op, const Belief& belief, Belief& out,
+                                  bool effectApplicators) {
+  const Operator& o = task_.operators[op];
+  out.assign(belief.begin(), belief.end());
+  compose(belief, -1, 0);
+  evaluator_.apply(o, evaluator_.view(composed_), scratch_, effectApplicators);
+  local_.clear();
+  storeForgetting(local_, coreMask_);
+  out.front() = local_.front();
+  Belief& next = splitWorlds_[0];
+  for (const int c : touched_[op]) {
+    next.clear();
+    for (const std::uint32_t w : localWorlds_[belief[static_cast<std::size_t>(c) + 1]]) {
+      compose(belief, c, w);
+      evaluator_.apply(o, evaluator_.view(composed_), scratch_, effectApplicators);
+      storeForgetting(next, componentMask_[c]);
+    }
+    std::sort(next.begin(), next.end());
+    next.erase(std::unique(next.begin(), next.end()), next.end());
+    out[static_cast<std::size_t>(c) + 1] = internLocal(next);
+  }
+  canonicalize(out);
+}
+
+// As canonicalize: Kw atoms whose subject is known are cleared, in the core or in the local
+// worlds of their component.
+void KnowledgeTask::canonicalizeFactored(Belief& belief) {
+  summarize(belief);
+  for (const AtomId k : knowledgeAtoms_) {
+    if (!bit(anyWorld_, k)) continue;
+    const AtomId base = kwBase_[k];
+    if (base == kNotKnowledge) continue;  // Kv: a factored task has no fluents
+    if (base != kNoBase && !bit(allWorlds_, base) && bit(anyWorld_, base)) continue;
+    const int c = factoring_.componentOf[k];
+    if (c < 0) {
+      std::copy_n(world(belief.front()).words(), scratch_.size(), scratch_.begin());
+      setBit(scratch_, k, false);
+      belief.front() = store(scratch_);
+      continue;
+    }
+    local_.clear();
+    for (const std::uint32_t w : localWorlds_[belief[static_cast<std::size_t>(c) + 1]]) {
+      std::copy_n(world(w).words(), scratch_.size(), scratch_.begin());
+      setBit(scratch_, k, false);
+      local_.push_back(store(scratch_));
+    }
+    std::sort(local_.begin(), local_.end());
+    local_.erase(std::unique(local_.begin(), local_.end()), local_.end());
+    belief[static_cast<std::size_t>(c) + 1] = internLocal(local_);
+  }
+}
+
+// Only the atom's component splits; an atom of the core is known, so one side is empty.
+void KnowledgeTask::splitFactored(AtomId atom, const Belief& belief, Belief& onTrue,
+                                  Belief& onFalse) {
+  onTrue.clear();
+  onFalse.clear();
+  const int c = factoring_.componentOf[atom];
+  if (c < 0) {
+    (world(belief.front()).atom(atom) ? onTrue : onFalse) = belief;
+    return;
+  }
+  Belief& trueWorlds = splitWorlds_[0];
+  Belief& falseWorlds = splitWorlds_[1];
+  trueWorlds.clear();
+  falseWorlds.clear();
+  for (const std::uint32_t w : localWorlds_[belief[static_cast<std::size_t>(c) + 1]]) {
+    (world(w).atom(atom) ? trueWorlds : falseWorlds).push_back(w);
+  }
+  for (auto [side, worlds] : {std::pair{&onTrue, &trueWorlds}, {&onFalse, &falseWorlds}}) {
+    if (worlds->empty()) continue;
+    *side = belief;
+    (*side)[static_cast<std::size_t>(c) + 1] = internLocal(*worlds);
+    canonicalize(*side);
+  }
+}
+
+// The hidden state must agree with the known core and give each component one of its initial
+// local worlds; the atoms it leaves out keep their known values.
+std::uint32_t KnowledgeTask::hiddenWorldFactored(const HiddenState& hidden,
+                                                 const std::string& file) {
+  summarize(initial_);
+  std::copy_n(world(initial_.front()).words(), scratch_.size(), scratch_.begin());
+  std::copy(allWorlds_.begin(), allWorlds_.end(), scratch_.begin());
+  const auto reject = [&](const std::string& why) {
+    return InputError(
+        locate(file, "hidden state is not one of the initial worlds the knowledge admits" + why,
+               hidden.pos.line, hidden.pos.column));
+  };
+  for (const GroundAtom& atom : hidden.atoms) {
+    const std::string name =
+        describeAtom(contingent_.domain, contingent_.problem, atom.predicate, atom.args);
+    const AtomId id = findAtom(name);
+    if (id < 0) throw reject(": " + name + " can never be true");
+    setBit(scratch_, id, true);
+  }
+  const std::vector<std::uint64_t> whole = scratch_;
+  const std::uint64_t* core = world(initial_.front()).words();
+  for (std::size_t i = 0; i < whole.size(); ++i) {
+    if ((whole[i] & coreMask_[i]) != core[i]) throw reject("");
+  }
+  for (int c = 0; c < factoring_.components; ++c) {
+    for (std::size_t i = 0; i < whole.size(); ++i) scratch_[i] = whole[i] & componentMask_[c][i];
+    const Belief& locals = localWorlds_[initial_[static_cast<std::size_t>(c) + 1]];
+    const std::uint32_t id = worlds_.find(scratch_);
+    if (id == PackedSet::kMissing || !std::binary_search(locals.begin(), locals.end(), id)) {
+      throw reject("");
+    }
+  }
+  return store(whole);
+}
+
+// Which component each atom's value or knowledge belongs to, which components each operator reads
+// (precondition) or writes, and the index of the relaxed reachability of sharingKey: operators by
+// the plain literal they wait for, and their knowledge literals.
+void KnowledgeTask::setUpSettling() {
+  ownerOf_ = factoring_.componentOf;
+  for (std::size_t a = 0; a < ownerOf_.size(); ++a) {
+    for (const AtomId base : {kwBase_[a], kQuery_[a].base, forget_[a].base}) {
+      if (base >= 0 && factoring_.componentOf[base] >= 0) {
+        ownerOf_[a] = factoring_.componentOf[base];
+      }
+    }
+  }
+  const std::size_t atoms = task_.atomNames.size();
+  const std::size_t operators = task_.operators.size();
+  opReadsOrWrites_.resize(operators);
+  waitingFor_.assign(2 * atoms, {});
+  knowledgeLiterals_.resize(operators);
+  for (std::size_t o = 0; o < operators; ++o) {
+    const Operator& op = task_.operators[o];
+    std::vector<int>& components = opReadsOrWrites_[o];
+    const auto add = [&](const std::vector<AtomId>& list) {
+      for (const AtomId a : list) {
+        if (ownerOf_[a] >= 0) components.push_back(ownerOf_[a]);
+      }
+    };
+    add(op.effect.adds);
+    add(op.effect.deletes);
+    add(op.precondition.positive);
+    add(op.precondition.negative);
+    for (const ConditionalEffect& c : op.conditional) {
+      add(c.effect.adds);
+      add(c.effect.deletes);
+      for (const Condition& d : c.disjuncts) {
+        add(d.positive);
+        add(d.negative);
+      }
+    }
+    std::sort(components.begin(), components.end());
+    components.erase(std::unique(components.begin(), components.end()), components.end());
+    for (const bool positive : {true, false}) {
+      for (const AtomId a : positive ? op.precondition.positive : op.precondition.negative) {
+        const bool knowledge = kQuery_[a].base != kNotKnowledge || kwBase_[a] != kNotKnowledge ||
+                               kvBase_[a] != kNotKnowledge;
+        if (knowledge) {
+          knowledgeLiterals_[o].push_back({a, positive});
+        } else {
+          waitingFor_[2 * static_cast<std::size_t>(a) + (positive ? 0 : 1)].push_back(
+              static_cast<int>(o));
+        }
+      }
+    }
+  }
+}
+
+// The current truth of a knowledge atom (K, Kw or Kv query) as holdsAtoms reads it.
+bool KnowledgeTask::knowledgeLiteralHolds(AtomId atom, const Belief& belief) {
+  if (kQuery_[atom].base != kNotKnowledge) return kQueryHolds(atom, belief);
+  if (kwBase_[atom] != kNotKnowledge) return kwHolds(atom, belief);
+  return kvHolds(atom, belief);
+}
+
+// A delete relaxation from `belief` (an atom may become true if it is true in some world or a
+// reached action adds it; false likewise) in which the components not yet unsettled keep their
+// knowledge: their knowledge literals are read as they are now, the others may go either way.
+// Reaching an action unsettles the components it touches, which only widens the relaxation, so
+// one monotone pass over a worklist finds the fixpoint (a greatest fixpoint of the settled set:
+// an action that would first touch a settled component would have been reached).
+void KnowledgeTask::sharingKey(const Belief& belief, Belief& key) {
+  key = belief;
+  if (!factored_ || belief.empty()) return;
+  summarize(belief);
+  unsettled_.assign(static_cast<std::size_t>(factoring_.components), 0);
+  const auto unsettleOwner = [&](AtomId a) {
+    if (ownerOf_[a] >= 0) unsettled_[ownerOf_[a]] = 1;
+  };
+  if (task_.goal.size() == 1) {
+    for (const AtomId a : task_.goal[0].positive) unsettleOwner(a);
+    for (const AtomId a : task_.goal[0].negative) unsettleOwner(a);
+  }
+  for (const AtomId k : knowledgeAtoms_) {  // a pending observation is still to be branched on
+    const AtomId base = kwBase_[k];
+    if (base >= 0 && bit(allWorlds_, k) && bit(anyWorld_, base) && !bit(allWorlds_, base)) {
+      unsettleOwner(base);
+    }
+  }
+  int open = static_cast<int>(std::count(unsettled_.begin(), unsettled_.end(), 0));
+  if (open == 0) return;
+  const std::size_t atoms = task_.atomNames.size();
+  const std::size_t operators = task_.operators.size();
+  reachable_.resize(2 * atoms);
+  for (std::size_t a = 0; a < atoms; ++a) {
+    reachable_[2 * a] = bit(anyWorld_, static_cast<AtomId>(a));
+    reachable_[2 * a + 1] = !bit(allWorlds_, static_cast<AtomId>(a));
+  }
+  // Per operator: plain literals not yet reachable plus knowledge literals of settled components
+  // that fail now; ready at 0.
+  missing_.assign(operators, 0);
+  blockedBy_.resize(static_cast<std::size_t>(factoring_.components));
+  for (std::vector<int>& ops : blockedBy_) ops.clear();
+  for (std::size_t fact = 0; fact < 2 * atoms; ++fact) {
+    if (reachable_[fact]) continue;
+    for (const int o : waitingFor_[fact]) ++missing_[o];
+  }
+  for (std::size_t o = 0; o < operators; ++o) {
+    for (const auto& [a, positive] : knowledgeLiterals_[o]) {
+      const int c = ownerOf_[a];
+      if (c < 0 || unsettled_[c] || knowledgeLiteralHolds(a, belief) == positive) continue;
+      ++missing_[o];
+      blockedBy_[c].push_back(static_cast<int>(o));
+    }
+  }
+  worklist_.clear();
+  for (std::size_t o = 0; o < operators; ++o) {
+    if (missing_[o] == 0) worklist_.push_back(static_cast<int>(o));
+  }
+  const auto ready = [&](int o) {
+    if (--missing_[o] == 0) worklist_.push_back(o);
+  };
+  const auto reach = [&](std::size_t fact) {
+    if (reachable_[fact]) return;
+    reachable_[fact] = 1;
+    for (const int o : waitingFor_[fact]) ready(o);
+  };
+  const auto reachEffects = [&](const EffectList& effect) {
+    for (const AtomId a : effect.adds) {
+      reach(2 * static_cast<std::size_t>(a));
+      const AtomId subject = forget_[a].base;
+      if (subject >= 0) {
+        reach(2 * static_cast<std::size_t>(subject));
+        reach(2 * static_cast<std::size_t>(subject) + 1);
+      }
+    }
+    for (const AtomId a : effect.deletes) reach(2 * static_cast<std::size_t>(a) + 1);
+  };
+  while (!worklist_.empty() && open > 0) {
+    const int o = worklist_.back();
+    worklist_.pop_back();
+    for (const int c : opReadsOrWrites_[o]) {
+      if (unsettled_[c]) continue;
+      unsettled_[c] = 1;
+      --open;
+      for (const int blocked : blockedBy_[c]) ready(blocked);
+    }
+    const Operator& op = task_.operators[o];
+    reachEffects(op.effect);
+    for (const ConditionalEffect& c : op.conditional) reachEffects(c.effect);
+  }
+  for (int c = 0; c < factoring_.components; ++c) {
+    if (!unsettled_[c]) key[static_cast<std::size_t>(c) + 1] = kSettled;
+  }
 }
 
 }  // namespace kaboum::symbolic

@@ -2,8 +2,10 @@
 // queries; seed 003 §III-A): a knowledge state is the set of worlds consistent with what the agent
 // knows, over the ground task of the compiled problem (contingent_parser.hpp); queries, actions
 // with forgetting, branching on sensed atoms and values, and execution in hidden true worlds.
+// Stored explicitly, or factored into independent components (knowledge_factoring.hpp).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <random>
@@ -14,13 +16,16 @@
 
 #include "kaboum/symbolic/attachments.hpp"
 #include "kaboum/symbolic/contingent_parser.hpp"
+#include "kaboum/symbolic/knowledge_factoring.hpp"
 #include "kaboum/symbolic/packed_set.hpp"
 #include "kaboum/symbolic/state.hpp"
 #include "kaboum/symbolic/task.hpp"
 
 namespace kaboum::symbolic {
 
-// Sorted ids of the worlds a knowledge state admits.
+// A knowledge state. Explicit: the sorted ids of the worlds it admits. Factored: the id of the
+// world of its known core atoms, then per component the id of its set of local worlds (the
+// knowledge state admits every combination). Either way equal knowledge has equal ids.
 using Belief = std::vector<std::uint32_t>;
 
 // Whether two fluent values are the same value (an undefined, NaN value equals itself), as Kv
@@ -34,14 +39,30 @@ bool sameValue(double a, double b);
 class KnowledgeTask {
  public:
   // Throws InputError when the initial knowledge is contradictory (no world) or admits more than
-  // `maxWorlds` worlds, and when a goal atom can never become known.
+  // `maxWorlds` worlds (factored: in one component), when a goal atom can never become known, and
+  // when `representation` is Factored but factoring is not exact for the task.
   KnowledgeTask(const ContingentProblem& contingent, const ProcedureRegistry& procedures,
-                std::size_t maxWorlds = std::size_t{1} << 18);
+                std::size_t maxWorlds = std::size_t{1} << 18,
+                KnowledgeRepresentation representation = KnowledgeRepresentation::Automatic);
 
   const GroundTask& task() const { return task_; }
   const ContingentProblem& contingent() const { return contingent_; }
   const Belief& initialBelief() const { return initial_; }
-  std::size_t worldCount() const { return worlds_.size(); }
+  std::size_t worldCount() const { return worlds_.size(); }  // worlds (factored: parts) stored
+  bool factored() const { return factored_; }
+  int componentCount() const { return factoring_.components; }
+  // How many worlds `belief` admits (a product of component sizes when factored).
+  double possibleWorlds(const Belief& belief) const;
+  // Worlds of `belief` to evaluate a heuristic in: all of them when explicit; when factored, each
+  // local world of each component completed with the first local world of the others (a sample
+  // of real worlds, linear in the components). Valid until the next call.
+  const Belief& heuristicWorlds(const Belief& belief);
+  // `belief` with each settled component (factored only) replaced by kSettled: one that the goal
+  // does not read and that no action can read or change any more (by a relaxed reachability
+  // analysis that holds its knowledge fixed). Knowledge states with equal keys have the same
+  // plans, so the search and the validator share them. Explicit: `belief` itself.
+  void sharingKey(const Belief& belief, Belief& key);
+  static constexpr std::uint32_t kSettled = 0xffffffffu;
   StateView world(std::uint32_t id) const { return evaluator_.view(worlds_.get(id)); }
   AttachmentRuntime& attachments() { return *attachments_; }
 
@@ -104,7 +125,15 @@ class KnowledgeTask {
   bool kwHolds(AtomId atom, const Belief& belief);
   bool kvHolds(AtomId atom, const Belief& belief);
   bool kQueryHolds(AtomId atom, const Belief& belief);
-  void storeForgetting(Belief& out);
+  void storeForgetting(Belief& out, std::span<const std::uint64_t> mask = {});
+  void applyFactored(int op, const Belief& belief, Belief& out, bool effectApplicators);
+  void canonicalizeFactored(Belief& belief);
+  void splitFactored(AtomId atom, const Belief& belief, Belief& onTrue, Belief& onFalse);
+  std::uint32_t internLocal(Belief& localWorlds);
+  void compose(const Belief& belief, int component, std::uint32_t local);
+  void setUpFactoring(KnowledgeRepresentation representation);
+  void setUpSettling();
+  bool knowledgeLiteralHolds(AtomId atom, const Belief& belief);
   bool applyInWorlds(int op, const Belief& belief, Belief& out, bool effectApplicators);
   bool fluentKnown(FluentId fluent, const Belief& belief);
   bool holdsAtoms(const Condition& condition, const Belief& belief);
@@ -113,6 +142,7 @@ class KnowledgeTask {
   void summarize(const Belief& belief);
   std::uint32_t store(std::span<const std::uint64_t> words);
   void enumerateWorlds(std::size_t maxWorlds);
+  std::uint32_t hiddenWorldFactored(const HiddenState& hidden, const std::string& file);
   void checkGoalKnowable();
 
   const ContingentProblem& contingent_;
@@ -152,6 +182,31 @@ class KnowledgeTask {
   Belief summarized_;
   std::vector<bool> attachmentWritten_;      // per fluent: some effect applicator writes it
   std::vector<std::uint64_t> symbolicHash_;  // per world: symbolicKey's term, 0 until computed
+
+  // Factored knowledge states (knowledge_factoring.hpp).
+  KnowledgeFactoring factoring_;
+  bool factored_ = false;
+  std::vector<std::uint64_t> coreMask_;                    // atoms outside every component
+  std::vector<std::vector<std::uint64_t>> componentMask_;  // per component: its atoms
+  std::vector<std::vector<int>> touched_;  // per operator: components its effects change
+  std::vector<Belief> localWorlds_;        // per id: sorted world ids of one component
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> localIds_;  // by hash
+  Belief sample_;  // heuristicWorlds' answer
+  Belief local_;   // scratch local world set
+  std::array<Belief, 2>
+      splitWorlds_;  // scratch local world sets of applyFactored and splitFactored
+  std::vector<std::uint64_t> composed_;  // scratch world composed from a factored state
+  // Settled components (sharingKey).
+  std::vector<int> ownerOf_;  // per atom: component its value or knowledge is of, or -1
+  std::vector<std::vector<int>> opReadsOrWrites_;  // per operator: components
+  std::vector<std::vector<int>> waitingFor_;  // per fact (2 atom + 0 true / 1 false): operators
+  std::vector<std::vector<std::pair<AtomId, bool>>> knowledgeLiterals_;  // per operator
+  // Scratch of sharingKey: per component, per fact, per operator.
+  std::vector<char> unsettled_;
+  std::vector<std::vector<int>> blockedBy_;
+  std::vector<char> reachable_;
+  std::vector<int> missing_;
+  std::vector<int> worklist_;
 };
 
 }  // namespace kaboum::symbolic

@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# Knowledge representations at scale (docs/contingent.md, "Knowledge representations"): Force
+# Sensing (`kaboum force-sensing N`) and navigation with unknown roads (`kaboum unknown-roads N`),
+# explicit and factored (auto) knowledge; per row the median of RUNS runs of the search time and
+# of the wall time of `kaboum contingent --json`, the plan's size, and whether
+# `kaboum contingent-validate` accepts it branch by branch. Prints Markdown.
+# Usage: bench/knowledge_scaling.sh [kaboum binary] [runs] [time limit s]
+set -uo pipefail
+cd "$(dirname "$0")/.."
+kaboum=${1:-build/release/kaboum}
+runs=${2:-5}
+limit=${3:-60}
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+
+# generator|n|knowledge per line.
+rows() {
+  local n
+  for n in 10 12 14; do echo "force-sensing|$n|explicit"; done
+  for n in 10 14 16 20 30; do echo "force-sensing|$n|auto"; done
+  for n in 10 12 14; do echo "unknown-roads|$n|explicit"; done
+  for n in 10 14 16 20 40; do echo "unknown-roads|$n|auto"; done
+}
+
+median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+
+echo "| instance | knowledge | initial worlds | components | status | search s (median of $runs) | wall s (median of $runs) | DAG nodes | leaves | validated |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
+while IFS='|' read -r generator n knowledge; do
+  "$kaboum" "$generator" "$n" --quiet --out-dir "$out" || exit 2
+  domain="$out/$generator-domain.pddl"
+  problem="$out/$generator-$n.pddl"
+  searches=()
+  walls=()
+  for run in $(seq "$runs"); do
+    start=$(date +%s.%N)
+    timeout $((limit + 5)) "$kaboum" contingent "$domain" "$problem" --knowledge "$knowledge" \
+      --max-worlds 4194304 --time-limit "$limit" --json --quiet --plan-out "$out/plan" \
+      > "$out/r.json" 2> "$out/err"
+    code=$?
+    walls+=("$(echo "$(date +%s.%N) - $start" | bc)")
+    [ $code -ne 0 ] && break
+    searches+=("$(jq .seconds "$out/r.json")")
+  done
+  if [ $code -ne 0 ]; then
+    status=$(jq -r .status "$out/r.json" 2>/dev/null || head -c 120 "$out/err")
+    [ $code -eq 124 ] && status="killed after $((limit + 5)) s"
+    echo "| $generator $n | $knowledge | | | ${status:-error} | | ${walls[-1]} | | | |"
+    continue
+  fi
+  if "$kaboum" contingent-validate "$domain" "$problem" "$out/plan" --knowledge "$knowledge" \
+    > /dev/null 2>&1; then valid=yes; else valid=NO; fi
+  search=$(printf '%s\n' "${searches[@]}" | median)
+  wall=$(printf '%s\n' "${walls[@]}" | median)
+  jq -r --arg i "$generator $n" --arg s "$search" --arg w "$wall" --arg v "$valid" \
+    '"| \($i) | \(.knowledge) | \(.initial_worlds) | \(.components) | \(.status) | \($s | tonumber | . * 1000 | round / 1000) | \($w | tonumber | . * 100 | round / 100) | \(.tree.dag_nodes) | \(.tree.leaves) | \($v) |"' \
+    "$out/r.json"
+done < <(rows)
