@@ -1,9 +1,9 @@
 // The assembly actions of the Bimanual Assembly scenario (thesis §6.2.3, Table 6.6, Figure 6.8;
 // src/kaboum/tamp/assembly_attachments.hpp) on the scene of examples/bimanual-assembly, each
-// called as the planner calls it: the thesis's six-action assembly applied step by step, each
-// step's certified paths replayed on the original meshes, the part inserted carried with the one
-// it is in; the cases each action refuses (wrong holders, a part not held) and a fit pushed
-// through the pipe's narrow middle, which collides and is rejected.
+// called as the planner calls it: the gearbox assembled step by step (eight actions), each part
+// where its fit puts it, the part inserted carried with the one it is in; the cases each action
+// refuses (one arm for two, a part not held) and a bearing pushed through the pipe, which
+// collides and is rejected.
 #include <gtest/gtest.h>
 
 #include <filesystem>
