@@ -11,9 +11,13 @@
 #include <string>
 #include <vector>
 
+#include "../support/test_support.hpp"
 #include "../tamp/attachment_calls.hpp"
+#include "kaboum/core/error.hpp"
 #include "kaboum/io/scene_file.hpp"
+#include "kaboum/symbolic/contingent_parser.hpp"
 #include "kaboum/tamp/assembly_attachments.hpp"
+#include "kaboum/tamp/solver.hpp"
 #include "kaboum/testing/data_paths.hpp"
 
 namespace kaboum::tamp {
@@ -180,6 +184,33 @@ TEST(BimanualAssemblyActions, AnInsertionPushedThroughThePipeIsRejected) {
   const std::string reason = lastReason(samples, tooDeep);
   EXPECT_NE(reason.find("insertion: "), std::string::npos) << reason;
   EXPECT_NE(reason.find("collides"), std::string::npos) << reason;
+}
+
+// The example's domain is accepted as it is; an assembly module with an argument fewer is one
+// line naming the domain file, its line and the arity.
+TEST(BimanualAssemblyActions, TheDomainDeclaresEachAssemblyEffectWithItsArguments) {
+  const std::string domain = test::slurp(exampleFile("bimanual-assembly/domain.pddl"));
+  const std::string problem = test::slurp(exampleFile("bimanual-assembly/problem.pddl"));
+  const auto solverError = [&](const std::string& text) {
+    try {
+      const Solver solver(bimanualWorld(),
+                          symbolic::parseContingent(text, "domain.pddl", problem, "problem.pddl"));
+    } catch (const InputError& error) {
+      return std::string(error.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(solverError(domain), "no error");
+  std::string shortened = domain;
+  const std::string module = "(pipebearing ?r - robot ?o - part ?r2 - robot ?o2 - part";
+  shortened.replace(shortened.find(module), module.size(),
+                    "(pipebearing ?r - robot ?o - part ?r2 - robot");
+  const std::string call = "[pipebearing ?r ?o ?r2 ?o2]";
+  shortened.replace(shortened.find(call), call.size(), "[pipebearing ?r ?o ?r2]");
+  EXPECT_PRED_FORMAT2(::testing::IsSubstring,
+                      "domain.pddl:20:5: module 'pipebearing': 'assemblePipeBearing' takes 4 "
+                      "argument(s), not 3",
+                      solverError(shortened));
 }
 
 }  // namespace kaboum::tamp
