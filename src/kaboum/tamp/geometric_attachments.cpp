@@ -8,6 +8,7 @@
 #include "kaboum/core/text.hpp"
 #include "kaboum/kinematics/random_configuration.hpp"
 #include "kaboum/motion/cartesian_motion.hpp"
+#include "kaboum/tamp/assembly_attachments.hpp"
 
 namespace kaboum::tamp {
 
@@ -78,7 +79,11 @@ Pose objectPose(const World& world, const GeometricState& state, std::size_t obj
 }
 
 GeometricAttachments::GeometricAttachments(const World& world, TampOptions options)
-    : world_(&world), options_(std::move(options)), placements_(world), scratch_(world.scratch()) {
+    : world_(&world),
+      options_(std::move(options)),
+      placements_(world),
+      scratch_(world.scratch()),
+      assembly_(std::make_unique<AssemblyAttachments>(*this)) {
   map_.intern(world.initialState());
   const SceneDescription& scene = world.description();
   for (std::size_t r = 0; r < scene.robots.size(); ++r) {
@@ -107,11 +112,19 @@ struct Signature {
 };
 
 const std::vector<Signature>& signatures() {
-  static const std::vector<Signature> table{
-      {"move", 1, true},           {"moveHome", 1, true},  {"pickUp", 2, true},
-      {"putDown", 3, true},        {"handover", 3, true},  {"isColliding", 0, false},
-      {"isReachable", 2, false},   {"isInside", 2, false}, {"isOnSupportSurface", 1, false},
-      {"freeSpaceFound", 2, false}};
+  static const std::vector<Signature> table{{"move", 1, true},
+                                            {"moveHome", 1, true},
+                                            {"pickUp", 2, true},
+                                            {"putDown", 3, true},
+                                            {"handover", 3, true},
+                                            {"isColliding", 0, false},
+                                            {"isReachable", 2, false},
+                                            {"isInside", 2, false},
+                                            {"isOnSupportSurface", 1, false},
+                                            {"freeSpaceFound", 2, false},
+                                            {"assemblePipeBearing", 4, true},
+                                            {"assembleBearingTree", 3, true},
+                                            {"assemblePipeTree", 3, true}};
   return table;
 }
 
@@ -165,6 +178,7 @@ void GeometricAttachments::registerProcedures(symbolic::ProcedureRegistry& regis
   checker("isInside", &GeometricAttachments::isInside);
   checker("isOnSupportSurface", &GeometricAttachments::isOnSupportSurface);
   checker("freeSpaceFound", &GeometricAttachments::freeSpaceFound);
+  assembly_->registerProcedures(registry);
 }
 
 const ActionGeometry* GeometricAttachments::transition(std::size_t from, std::size_t to) const {

@@ -27,6 +27,8 @@
 
 namespace kaboum::tamp {
 
+class AssemblyAttachments;
+
 struct TampOptions {
   // Every motion query (transit, transfer, approach, retreat): planner, time limit, seed.
   motion::MotionOptions motion;
@@ -111,7 +113,8 @@ class GeometricAttachments {
   // Registers every procedure under its name (procedureNames()).
   void registerProcedures(symbolic::ProcedureRegistry& registry);
   // Effects: move(robot), moveHome(robot), pickUp(robot, object), putDown(robot, object,
-  // location), handover(robot, object, robot); checkers:
+  // location), handover(robot, object, robot), and the Bimanual Assembly scenario's
+  // assemblePipeBearing, assembleBearingTree, assemblePipeTree (AssemblyAttachments); checkers:
   // isColliding(), isReachable(robot, object), isInside(object, location),
   // isOnSupportSurface(object), freeSpaceFound(object, location). A robot argument names a scene
   // robot (its first tool) or a tool.
@@ -136,6 +139,9 @@ class GeometricAttachments {
   [[nodiscard]] const GeometricStatistics& statistics() const { return statistics_; }
 
  private:
+  // The scenario-specific effects are built from the utilities below.
+  friend class AssemblyAttachments;
+
   struct Arm {
     std::size_t robot = 0;
     std::size_t tool = 0;
@@ -235,6 +241,7 @@ class GeometricAttachments {
   std::map<std::pair<std::size_t, std::size_t>, std::unique_ptr<motion::ToolKinematics>> tools_;
   std::unordered_map<std::string, Arm> arms_;  // lower-case robot and tool names
   GeometricStatistics statistics_;
+  std::unique_ptr<AssemblyAttachments> assembly_;
 };
 
 }  // namespace kaboum::tamp
