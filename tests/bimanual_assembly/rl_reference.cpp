@@ -4,7 +4,7 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
-#include <regex>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
@@ -21,11 +21,60 @@ std::string slurp(const std::string& path) {
   return text.str();
 }
 
+// An XML element as the Robotics Library's files write it (no nesting of the same tag): its start
+// tag's attributes, its content, and where it ends in the text.
+struct Element {
+  std::string attributes;
+  std::string body;
+  std::size_t end = 0;
+};
+
+// Whether `text` has the start of a `<tag` element at `at` (the tag name ends there).
+bool startsElement(const std::string& text, std::size_t at, const std::string& tag) {
+  if (text.compare(at, tag.size() + 1, "<" + tag) != 0) return false;
+  const std::size_t after = at + tag.size() + 1;
+  return after < text.size() && (std::isspace(static_cast<unsigned char>(text[after])) ||
+                                 text[after] == '>' || text[after] == '/');
+}
+
+// The first `<tag …>…</tag>` (or `<tag …/>`) in `text` from `from`.
+std::optional<Element> findElement(const std::string& text, const std::string& tag,
+                                   std::size_t from = 0) {
+  for (std::size_t at = text.find('<', from); at != std::string::npos;
+       at = text.find('<', at + 1)) {
+    if (!startsElement(text, at, tag)) continue;
+    const std::size_t close = text.find('>', at);
+    if (close == std::string::npos) return std::nullopt;
+    Element element;
+    element.attributes = text.substr(at + tag.size() + 1, close - at - tag.size() - 1);
+    if (text[close - 1] == '/') {
+      element.end = close + 1;
+      return element;
+    }
+    const std::string endTag = "</" + tag + ">";
+    const std::size_t end = text.find(endTag, close);
+    if (end == std::string::npos) return std::nullopt;
+    element.body = text.substr(close + 1, end - close - 1);
+    element.end = end + endTag.size();
+    return element;
+  }
+  return std::nullopt;
+}
+
+// The value of attribute `name` in a start tag's attributes, empty when absent.
+std::string attribute(const std::string& attributes, const std::string& name) {
+  const std::string key = name + "=\"";
+  const std::size_t at = attributes.find(key);
+  if (at == std::string::npos) return {};
+  const std::size_t end = attributes.find('"', at + key.size());
+  return end == std::string::npos ? std::string()
+                                  : attributes.substr(at + key.size(), end - at - key.size());
+}
+
 // The text of `<tag>…</tag>` inside `element`, empty when absent.
 std::string child(const std::string& element, const std::string& tag) {
-  std::smatch match;
-  const std::regex pattern("<" + tag + "\\b[^>]*>([\\s\\S]*?)</" + tag + ">");
-  return std::regex_search(element, match, pattern) ? match[1].str() : std::string();
+  const std::optional<Element> found = findElement(element, tag);
+  return found ? found->body : std::string();
 }
 
 // The vector of `<x>`, `<y>`, `<z>` inside `element`, `fallback` where one is absent.
@@ -51,11 +100,10 @@ Pose fixedTransform(const std::string& element) {
   return pose;
 }
 
+// The `idref` of the `<tag idref="…"/>` inside `element`, empty when absent.
 std::string idref(const std::string& element, const std::string& tag) {
-  std::smatch match;
-  const std::regex pattern("<" + tag + "\\s+idref=\"([^\"]+)\"");
-  if (!std::regex_search(element, match, pattern)) return {};
-  return match[1].str();
+  const std::optional<Element> found = findElement(element, tag);
+  return found ? attribute(found->attributes, "idref") : std::string();
 }
 
 // VRML tokens: braces, brackets, quoted strings (without quotes), and words; comments dropped.
@@ -210,22 +258,25 @@ std::map<std::string, Pose> MdlModel::framePoses(const std::map<std::string, dou
 MdlModel readMdl(const std::string& path) {
   const std::string text = slurp(path);
   MdlModel model;
-  std::smatch world;
-  if (!std::regex_search(text, world, std::regex("<world id=\"([^\"]+)\">([\\s\\S]*?)</world>"))) {
-    throw std::runtime_error(path + ": no <world>");
-  }
-  model.worldId = world[1].str();
-  model.world = fixedTransform(world[2].str());
-  const std::regex element("<(fixed|revolute|prismatic) id=\"([^\"]+)\">([\\s\\S]*?)</\\1>");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), element);
-       it != std::sregex_iterator(); ++it) {
+  const std::optional<Element> world = findElement(text, "world");
+  if (!world) throw std::runtime_error(path + ": no <world>");
+  model.worldId = attribute(world->attributes, "id");
+  model.world = fixedTransform(world->body);
+  // The transforms in the order of the file.
+  for (std::size_t at = text.find('<'); at != std::string::npos; at = text.find('<', at + 1)) {
+    std::string kind;
+    for (const char* tag : {"fixed", "revolute", "prismatic"}) {
+      if (startsElement(text, at, tag)) kind = tag;
+    }
+    if (kind.empty()) continue;
+    const std::optional<Element> element = findElement(text, kind, at);
+    if (!element) throw std::runtime_error(path + ": an unterminated <" + kind + ">");
     MdlTransform t;
-    const std::string kind = (*it)[1].str();
     t.kind = kind == "fixed"      ? MdlTransform::Kind::Fixed
              : kind == "revolute" ? MdlTransform::Kind::Revolute
                                   : MdlTransform::Kind::Prismatic;
-    t.id = (*it)[2].str();
-    const std::string body = (*it)[3].str();
+    t.id = attribute(element->attributes, "id");
+    const std::string& body = element->body;
     t.a = idref(body, "a");
     t.b = idref(body, "b");
     if (t.kind == MdlTransform::Kind::Fixed) {
@@ -234,6 +285,7 @@ MdlModel readMdl(const std::string& path) {
       t.axis = xyz(child(body, "axis"), Eigen::Vector3d::UnitZ());
     }
     model.transforms.push_back(t);
+    at = element->end - 1;
   }
   return model;
 }
