@@ -156,7 +156,8 @@ std::string AssemblyAttachments::tryInsertion(const GeometricState& state, const
     const Pose pose = objectPose(world, atSeat, object);
     world.release(atSeat, inserter.robot, object);
     if (baseHolder) {
-      const Attachment& baseGrasp =
+      // A copy: hold() below appends to the vector it is in.
+      const Attachment baseGrasp =
           atSeat.robots[*baseHolder].held[heldIndex(atSeat, *baseHolder, base)];
       const Pose inLink = baseGrasp.inLink * basePose.inverse() * pose;
       world.hold(atSeat, *baseHolder, baseGrasp.link, object, inLink);
