@@ -98,14 +98,13 @@ std::uint64_t transitionKey(std::uint64_t symbolic, int op) {
 
 class AndOrSearch {
  public:
-  // With `symbolicOnly`, actions change knowledge states by their symbolic effects alone (the
-  // values effect applicators write stay as they are), except the transitions (transitionKey) in
-  // `blocked`, which are left out: the symbolic search of symbolicFirst.
+  // With `blocked` (symbolicOnly()), actions change knowledge states by their symbolic effects
+  // alone (the values effect applicators write stay as they are), except the transitions
+  // (transitionKey) in `blocked`, which are left out: the symbolic search of symbolicFirst.
   AndOrSearch(KnowledgeTask& task, const ContingentOptions& options,
               const std::unordered_set<std::uint64_t>* blocked = nullptr)
       : task_(task),
         options_(options),
-        symbolicOnly_(blocked != nullptr),
         blocked_(blocked),
         mode_(orMode(options.mode)),
         heuristic_(makeHeuristic(mode_ == OrMode::Greedy || mode_ == OrMode::AStar
@@ -159,6 +158,9 @@ class AndOrSearch {
 
   // Knowledge states with the same sharing key (equal up to settled components, factored
   // knowledge) share one id, whose plan is that of the first one seen.
+  // The symbolic search of symbolicFirst: effect applicators are not called.
+  bool symbolicOnly() const { return blocked_ != nullptr; }
+
   int intern(Belief&& belief) {
     if (task_.factored()) task_.sharingKey(belief, key_);
     const bool keyed = task_.factored() && key_ != belief;
@@ -292,7 +294,7 @@ class AndOrSearch {
     const Belief& belief = *beliefs_[id];
     Belief next;
     bool feasible = true;
-    if (symbolicOnly_) {
+    if (symbolicOnly()) {
       task_.preview(op, belief, next);
     } else {
       feasible = task_.apply(op, belief, next, sample);
@@ -333,7 +335,7 @@ class AndOrSearch {
       if (!task_.applicable(o, belief)) continue;
       if (anyBlocked && blocked_->count(transitionKey(symbolic, o)) > 0) continue;
       Candidate candidate;
-      if (!symbolicOnly_ && task_.callsEffectApplicator(o)) {
+      if (!symbolicOnly() && task_.callsEffectApplicator(o)) {
         task_.preview(o, belief, preview);
         candidate.op = o;
         candidate.deferred = true;
@@ -505,7 +507,6 @@ class AndOrSearch {
 
   KnowledgeTask& task_;
   const ContingentOptions& options_;
-  bool symbolicOnly_;
   const std::unordered_set<std::uint64_t>* blocked_;  // not owned
   OrMode mode_;
   std::unique_ptr<Heuristic> heuristic_;
