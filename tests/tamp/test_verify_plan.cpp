@@ -169,6 +169,12 @@ TEST(VerifyPlanFileBadInput, OneLineNamesTheFileAndTheKey) {
             "plan.json: nodes[2].action: unknown or never applicable action (pickup kr5 cup left)");
 
   file = planFile();
+  node(file, "(pickup kr5 block left)")["sample"] = -1;
+  EXPECT_EQ(inputError(file), "plan.json: nodes[2].sample: expected a non-negative integer");
+  node(file, "(pickup kr5 block left)")["sample"] = std::uint64_t{1} << 32;
+  EXPECT_EQ(inputError(file), "plan.json: nodes[2].sample: expected a sample number below 2^32");
+
+  file = planFile();
   node(file, "(pickup kr5 block left)")["geometry"][0].erase("to_state");
   EXPECT_EQ(inputError(file), "plan.json: nodes[2].geometry[0]: missing key 'to_state'");
 
