@@ -23,10 +23,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Writes `text` to a fresh file in a per-test folder and returns its path.
+// Writes `text` to a file in a folder emptied when the process first writes to it (a process
+// that reuses an earlier run's id must not find that run's files: the mesh lookup searches the
+// folder and its ancestors) and returns its path.
 std::string writeUrdf(const std::string& name, const std::string& text) {
-  const fs::path dir = fs::temp_directory_path() / ("kaboum_urdf_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  static const fs::path dir = [] {
+    const fs::path fresh =
+        fs::temp_directory_path() / ("kaboum_urdf_" + std::to_string(::getpid()));
+    fs::remove_all(fresh);
+    fs::create_directories(fresh);
+    return fresh;
+  }();
   const fs::path path = dir / name;
   std::ofstream(path) << text;
   return path.string();
