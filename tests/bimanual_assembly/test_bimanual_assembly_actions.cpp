@@ -115,15 +115,31 @@ TEST(BimanualAssemblyActions, TheGearboxIsAssembledOnTheTableStepByStep) {
   expectOnAxis(relativePose(done, "pipe", "bearing1"), fits.bearingInPipe);
   expectOnAxis(relativePose(done, "tree", "bearing2"), fits.bearingOnTree);
   EXPECT_EQ(relativePose(done, "tree", "tree").translation().norm(), 0);
-  // Each assembly's geometry: a transfer, the Cartesian insertion, the hand-over of the parts and
-  // the retreat; assemblePipeBearing starts with the holder's transfer to the meeting.
+  // The parts that touch where they fit are joined: each bearing's bore on the tree's shaft, the
+  // two bearings one on the other, the bearing pushed into the pipe past its bounds; the pipe and
+  // the tree, the pipe and the tree's bearing are not.
+  EXPECT_TRUE(done.areJoined(id("bearing2"), id("tree")));
+  EXPECT_TRUE(done.areJoined(id("bearing1"), id("tree")));
+  EXPECT_TRUE(done.areJoined(id("bearing1"), id("bearing2")));
+  EXPECT_TRUE(done.areJoined(id("bearing1"), id("pipe")));
+  EXPECT_FALSE(done.areJoined(id("pipe"), id("tree")));
+  EXPECT_FALSE(done.areJoined(id("pipe"), id("bearing2")));
+  // The gearbox is free of collisions only because its joined parts are not checked against
+  // each other.
+  EXPECT_FALSE(bimanualWorld().firstCollision(done));
+  GeometricState unjoined = done;
+  unjoined.joined.clear();
+  EXPECT_TRUE(bimanualWorld().firstCollision(unjoined));
+  // Each assembly's geometry: a transfer, the parts joined, the Cartesian insertion, the hand-over
+  // of the parts and the retreat; assemblePipeBearing starts with the holder's transfer to the
+  // meeting.
   const ActionGeometry* insertion = assembly.attachments.transition(states[5], states[6]);
   ASSERT_NE(insertion, nullptr);
   std::vector<GeometricStep::Kind> kinds;
   for (const GeometricStep& step : insertion->steps) kinds.push_back(step.kind);
   using Kind = GeometricStep::Kind;
-  EXPECT_EQ(kinds, (std::vector<Kind>{Kind::Transfer, Kind::Transfer, Kind::Approach, Kind::Grasp,
-                                      Kind::Release, Kind::Retreat}));
+  EXPECT_EQ(kinds, (std::vector<Kind>{Kind::Transfer, Kind::Transfer, Kind::Join, Kind::Approach,
+                                      Kind::Grasp, Kind::Release, Kind::Retreat}));
 }
 
 // Each action refuses what Table 6.6's preconditions exclude, whatever the symbolic state says:

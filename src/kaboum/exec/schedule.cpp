@@ -43,7 +43,9 @@ void Schedule::append(std::size_t node, const std::string& name,
   for (const tamp::ActionGeometry& effect : geometry) {
     for (const GeometricStep& step : effect.steps) {
       if (step.robot >= initial_.size()) throw std::invalid_argument("no such robot");
-      if (step.path.empty()) {
+      if (step.kind == GeometricStep::Kind::Join) {
+        // Not a gripper event: the parts are joined where the insertion put them.
+      } else if (step.path.empty()) {
         events_.push_back(
             {node, action.end, step.kind, step.robot, step.tool, step.object, step.pose});
       } else {

@@ -63,6 +63,34 @@ std::vector<std::size_t> assemblyOf(const World& world, const GeometricState& st
   return parts;
 }
 
+// The pairs of a part in `moved` and one in `receiving` whose bounding pieces come within `margin`
+// of each other somewhere along `path`, the configurations of robot `robot` from `state` on: the
+// contacts the motion brings about (Join steps of robot `robot`).
+std::vector<GeometricStep> contactsAlong(const World& world, const GeometricState& state,
+                                         std::size_t robot, const motion::Waypoints& path,
+                                         const std::vector<std::size_t>& moved,
+                                         const std::vector<std::size_t>& receiving, double margin) {
+  const CollisionScene& scene = world.scene();
+  std::vector<GeometricStep> joins;
+  GeometricState along = state;
+  for (const std::vector<double>& q : path) {
+    along.robots[robot].configuration = q;
+    for (const std::size_t part : moved) {
+      const Pose pose = objectPose(world, along, part);
+      for (const std::size_t into : receiving) {
+        const bool known = std::any_of(joins.begin(), joins.end(), [&](const GeometricStep& s) {
+          return s.object == part && s.joinedTo == into;
+        });
+        if (!known && bodiesCollide(scene.body(part), pose, scene.body(into),
+                                    objectPose(world, along, into), margin)) {
+          joins.push_back({GeometricStep::Kind::Join, robot, 0, {}, part, Pose::Identity(), into});
+        }
+      }
+    }
+  }
+  return joins;
+}
+
 // `state` without `objects`, resting or held.
 GeometricState without(const World& world, const GeometricState& state,
                        const std::vector<std::size_t>& objects) {
@@ -147,6 +175,15 @@ std::string AssemblyAttachments::tryInsertion(const GeometricState& state, const
   if (!certified(atSeat, seated * tcpInPart, insertion)) {
     return "insertion: " + insertion.message;
   }
+  // The contacts of the insertion, allowed from its start on. Its waypoints are at most a tool
+  // step apart, so parts that touch between two of them come within half a step at one.
+  std::vector<GeometricStep> joins =
+      contactsAlong(world, atSeat, inserter.robot, insertion.path, carried, receiving,
+                    world.description().settings.toolStep / 2);
+  for (GeometricStep& join : joins) {
+    join.tool = inserter.tool;
+    atSeat.join(join.object, join.joinedTo);
+  }
   atSeat.robots[inserter.robot].configuration = insertion.path.back();
   // What the inserter holds goes with the part: to the robot holding the base, on the base's
   // link, or resting where it is.
@@ -185,6 +222,7 @@ std::string AssemblyAttachments::tryInsertion(const GeometricState& state, const
   reached.robots[inserter.robot].configuration = retreat.path.back();
   steps.push_back({GeometricStep::Kind::Transfer, inserter.robot, inserter.tool,
                    std::move(transfer.path), 0, Pose::Identity()});
+  steps.insert(steps.end(), joins.begin(), joins.end());
   steps.push_back({GeometricStep::Kind::Approach, inserter.robot, inserter.tool,
                    std::move(insertion.path), 0, Pose::Identity()});
   steps.insert(steps.end(), events.begin(), events.end());

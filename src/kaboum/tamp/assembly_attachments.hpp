@@ -30,8 +30,8 @@ struct AssemblyFit {
 // a bearing on the tree's upper shaft, the pipe over the tree with that bearing in its upper seat.
 struct AssemblyFits {
   AssemblyFit bearingInPipe{0.0115, -0.06, true};
-  AssemblyFit bearingOnTree{0.0665, 0.05, false};
-  AssemblyFit pipeOnTree{0.025, 0.08, false};
+  AssemblyFit bearingOnTree{0.017, 0.08, false};
+  AssemblyFit pipeOnTree{0.0255, 0.08, false};
   // Metres: where assemblePipeBearing holds the pipe — horizontally within meetingSpread of where
   // it is held, from its height up to meetingRise above.
   double meetingSpread = 0.1;

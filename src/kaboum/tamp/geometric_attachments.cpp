@@ -52,6 +52,8 @@ const char* toString(GeometricStep::Kind kind) {
       return "grasp";
     case GeometricStep::Kind::Release:
       return "release";
+    case GeometricStep::Kind::Join:
+      return "join";
   }
   return "?";
 }
@@ -101,6 +103,8 @@ namespace {
 constexpr std::string_view kNotAnArm = "not a robot with a tool nor a tool of the scene";
 constexpr std::string_view kNotAMovableObject = "not a movable object of the scene";
 constexpr std::string_view kNotALocation = "not a location of the scene";
+// Parts joined by an assembly move only with the assembly actions.
+constexpr std::string_view kJoined = "the object is assembled with another part";
 constexpr std::string_view kNoFreePlacement = "no free placement in the location";
 
 // Each procedure: its name, its number of arguments (robots, objects, locations by name), and
@@ -478,6 +482,7 @@ bool GeometricAttachments::pickUp(const AttachmentArgs& args, std::span<double> 
   if (!state.placements[world_->scene().slot(*target)].present) {
     return fail("pickUp", args, "the object is held");
   }
+  if (state.isJoined(*target)) return fail("pickUp", args, kJoined);
   if (const std::optional<std::size_t> above = placements_.objectOnTop(state, *target)) {
     return fail("pickUp", args, "'" + world_->scene().name(*above) + "' stands on the object");
   }
@@ -588,6 +593,7 @@ bool GeometricAttachments::putDown(const AttachmentArgs& args, std::span<double>
   if (std::find(held.begin(), held.end(), *target) == held.end()) {
     return fail("putDown", args, "the robot does not hold the object");
   }
+  if (state.isJoined(*target)) return fail("putDown", args, kJoined);
   bool full = false;
   return firstSample(
       "putDown", args, state, options_.placementSamples, writes,
@@ -708,6 +714,7 @@ bool GeometricAttachments::handover(const AttachmentArgs& args, std::span<double
   if (std::find(held.begin(), held.end(), *target) == held.end()) {
     return fail("handover", args, "the giver does not hold the object");
   }
+  if (state.isJoined(*target)) return fail("handover", args, kJoined);
   if (!state.robots[receiver->robot].heldObjects.empty()) {
     return fail("handover", args, "the receiver holds an object");
   }

@@ -59,14 +59,17 @@ struct TampOptions {
 // robot holds takes it from that robot, whose Release right after it (a handover) leaves the
 // object with the new holder.
 struct GeometricStep {
-  enum class Kind { Transit, Transfer, Approach, Retreat, Grasp, Release };
+  // Join: `robot` assembles `object` into `joinedTo` — from this step on the two are joined
+  // (GeometricState::joined): they may touch, and no check tests one against the other.
+  enum class Kind { Transit, Transfer, Approach, Retreat, Grasp, Release, Join };
   Kind kind = Kind::Transit;
   std::size_t robot = 0;
   std::size_t tool = 0;
   motion::Waypoints path;  // motions only
-  std::size_t object = 0;  // Grasp, Release: the scene object
+  std::size_t object = 0;  // Grasp, Release, Join: the scene object
   // Grasp: the object frame in the tool link frame; Release: the object's pose in the world.
   Pose pose = Pose::Identity();
+  std::size_t joinedTo = 0;  // Join: the scene object `object` is joined to
 };
 
 const char* toString(GeometricStep::Kind kind);

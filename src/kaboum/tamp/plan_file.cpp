@@ -55,6 +55,9 @@ nlohmann::json stepJson(const World& world, const GeometricStep& step) {
       json["object"] = world.scene().name(step.object);
       json["object_pose"] = io::toJson(step.pose);
       break;
+    case GeometricStep::Kind::Join:
+      json["objects"] = {world.scene().name(step.object), world.scene().name(step.joinedTo)};
+      break;
     default:
       json["waypoints"] = step.path;
       break;

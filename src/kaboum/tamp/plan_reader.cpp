@@ -95,12 +95,13 @@ class Reader {
     const std::string kind = string(value, key, "kind");
     constexpr GeometricStep::Kind kinds[] = {
         GeometricStep::Kind::Transit, GeometricStep::Kind::Transfer, GeometricStep::Kind::Approach,
-        GeometricStep::Kind::Retreat, GeometricStep::Kind::Grasp,    GeometricStep::Kind::Release};
+        GeometricStep::Kind::Retreat, GeometricStep::Kind::Grasp,    GeometricStep::Kind::Release,
+        GeometricStep::Kind::Join};
     const auto known = std::find_if(std::begin(kinds), std::end(kinds),
                                     [&](GeometricStep::Kind k) { return kind == toString(k); });
     if (known == std::end(kinds)) {
       fail(key + ".kind",
-           "'" + kind + "' is none of transit, transfer, approach, retreat, grasp, release");
+           "'" + kind + "' is none of transit, transfer, approach, retreat, grasp, release, join");
     }
     step.kind = *known;
     step.robot = entity(value, key, "robot", NamedEntity::Kind::Robot, "robot");
@@ -114,6 +115,25 @@ class Reader {
       step.tool = static_cast<std::size_t>(named - spec.tools.begin());
     } else if (gripper || !tool.empty()) {
       fail(key + ".tool", fmt::format("robot '{}' has no tool '{}'", spec.name, tool));
+    }
+    if (step.kind == GeometricStep::Kind::Join) {
+      const json& objects = array(value, key, "objects");
+      if (objects.size() != 2) fail(key + ".objects", "expected the two objects joined");
+      std::size_t ids[2];
+      for (std::size_t i = 0; i < 2; ++i) {
+        const std::string at = fmt::format("{}.objects[{}]", key, i);
+        const std::optional<NamedEntity> found =
+            objects[i].is_string() ? world_.find(objects[i].get<std::string>()) : std::nullopt;
+        if (!found || found->kind != NamedEntity::Kind::Object ||
+            !world_.scene().movable(found->index)) {
+          fail(at, "expected the name of a movable object of the scene");
+        }
+        ids[i] = found->index;
+      }
+      if (ids[0] == ids[1]) fail(key + ".objects", "an object cannot be joined to itself");
+      step.object = ids[0];
+      step.joinedTo = ids[1];
+      return step;
     }
     if (gripper) {
       step.object = entity(value, key, "object", NamedEntity::Kind::Object, "object");
@@ -366,6 +386,7 @@ class Replay {
         }
         continue;
       }
+      if (step.kind == GeometricStep::Kind::Join) continue;
       const std::string object = world_.scene().name(step.object);
       if (step.kind == GeometricStep::Kind::Release) {
         if (!posesClose(objectPose(world_, states[s + 1], step.object), step.pose)) {

@@ -60,6 +60,9 @@ std::vector<GeometricState> statesAlong(const World& world, const GeometricState
         if (!handedOver) world.release(next, step.robot, step.object);
         break;
       }
+      case GeometricStep::Kind::Join:
+        next.join(step.object, step.joinedTo);
+        break;
       default:
         next.robots[step.robot].configuration = step.path.back();
         break;

@@ -30,8 +30,8 @@ void GeometricStateMap::appendPose(const Pose& pose, StateKey& key) const {
   }
 }
 
-// Robots (configuration, then each held object's id, link and grasp), then placements: a held
-// object's count separates one robot's values from the next robot's.
+// Robots (configuration, then each held object's id, link and grasp), then placements, then the
+// joined pairs: a held object's count separates one robot's values from the next robot's.
 void GeometricStateMap::keyOf(const GeometricState& state, StateKey& key) const {
   key.clear();
   for (const RobotState& robot : state.robots) {
@@ -46,6 +46,10 @@ void GeometricStateMap::keyOf(const GeometricState& state, StateKey& key) const 
   for (const Placement& placement : state.placements) {
     key.push_back(placement.present ? 1 : 0);
     if (placement.present) appendPose(placement.pose, key);
+  }
+  for (const auto& [a, b] : state.joined) {
+    key.push_back(static_cast<std::int64_t>(a));
+    key.push_back(static_cast<std::int64_t>(b));
   }
 }
 

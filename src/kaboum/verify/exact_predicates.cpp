@@ -67,7 +67,8 @@ std::optional<Party> ExactPredicates::firstCollisionOfObject(const GeometricStat
   const CollisionScene& scene = world.scene();
   const std::size_t body = reference_.objectBody(object);
   for (std::size_t other = 0; other < scene.size(); ++other) {
-    if (other != object && scene.present(other, state.placements) &&
+    if (other != object && !state.areJoined(object, other) &&
+        scene.present(other, state.placements) &&
         reference_.collides(body, pose, reference_.objectBody(other),
                             scene.pose(other, state.placements))) {
       return Party{Party::Kind::Object, other};

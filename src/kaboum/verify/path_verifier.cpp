@@ -135,6 +135,7 @@ struct CheckedParty {
   Pose inLink = Pose::Identity();  // a held object's frame in its link frame
   bool held = false;
   Pose scenePose = Pose::Identity();  // a scene object's world pose
+  std::optional<std::size_t> object;  // a held or scene object's id
 };
 
 // What the robots hold: the moving robots' objects of the path, the others' of the context.
@@ -161,7 +162,12 @@ std::vector<CheckedParty> partiesOf(const ReferenceGeometry& geometry, const Sce
     const std::vector<Link>& links = robot.collision.model().links();
     for (std::size_t link = 0; link < links.size(); ++link) {
       if (const std::optional<std::size_t> body = geometry.linkBody(r, link)) {
-        parties.push_back({{robot.name, links[link].name, ""}, *body, r, link});
+        CheckedParty party;
+        party.name = {robot.name, links[link].name, ""};
+        party.body = *body;
+        party.robot = r;
+        party.link = link;
+        parties.push_back(std::move(party));
       }
     }
     for (const ResolvedHeld& held : allHeld) {
@@ -171,7 +177,9 @@ std::vector<CheckedParty> partiesOf(const ReferenceGeometry& geometry, const Sce
                          r,
                          held.link,
                          held.objectInLink,
-                         true});
+                         true,
+                         Pose::Identity(),
+                         held.object});
     }
   }
   const GeometricState state = path.context ? *path.context : world.initialState();
@@ -184,6 +192,7 @@ std::vector<CheckedParty> partiesOf(const ReferenceGeometry& geometry, const Sce
     party.name.object = world.scene().name(object);
     party.body = geometry.objectBody(object);
     party.scenePose = world.scene().pose(object, state.placements);
+    party.object = object;
     parties.push_back(std::move(party));
   }
   return parties;
@@ -203,7 +212,8 @@ bool worldChecksSelfPair(const RobotCollisionModel& robot, const CheckedParty& a
   return !partA || !partB || !robot.filter().allowed(*partA, *partB);
 }
 
-// The pairs of parties checked at each sample: those with a party on a moving robot.
+// The pairs of parties checked at each sample: those with a party on a moving robot, but for two
+// objects joined in the path's context (GeometricState::joined).
 std::vector<std::pair<std::size_t, std::size_t>> checkedPairs(
     const World& world, const ScenePath& path, const std::vector<CheckedParty>& parties) {
   const auto moving = [&](const CheckedParty& party) {
@@ -215,6 +225,9 @@ std::vector<std::pair<std::size_t, std::size_t>> checkedPairs(
     for (std::size_t j = i + 1; j < parties.size(); ++j) {
       const CheckedParty &a = parties[i], &b = parties[j];
       if (!moving(a) && !moving(b)) continue;
+      if (path.context && a.object && b.object && path.context->areJoined(*a.object, *b.object)) {
+        continue;
+      }
       if (a.robot && b.robot && *a.robot == *b.robot &&
           !worldChecksSelfPair(world.robots()[*a.robot].collision, a, b)) {
         continue;

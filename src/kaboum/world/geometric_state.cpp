@@ -1,5 +1,7 @@
 #include "kaboum/world/geometric_state.hpp"
 
+#include <algorithm>
+
 namespace kaboum::world {
 
 namespace {
@@ -36,8 +38,26 @@ void combinePose(std::size_t& seed, const Pose& pose) {
 
 }  // namespace
 
+void GeometricState::join(std::size_t a, std::size_t b) {
+  const std::pair<std::size_t, std::size_t> pair = std::minmax(a, b);
+  const auto at = std::lower_bound(joined.begin(), joined.end(), pair);
+  if (at == joined.end() || *at != pair) joined.insert(at, pair);
+}
+
+bool GeometricState::areJoined(std::size_t a, std::size_t b) const {
+  return std::binary_search(joined.begin(), joined.end(),
+                            std::pair<std::size_t, std::size_t>(std::minmax(a, b)));
+}
+
+bool GeometricState::isJoined(std::size_t object) const {
+  return std::any_of(joined.begin(), joined.end(), [&](const auto& pair) {
+    return pair.first == object || pair.second == object;
+  });
+}
+
 bool GeometricState::operator==(const GeometricState& other) const {
-  if (robots.size() != other.robots.size() || placements.size() != other.placements.size()) {
+  if (robots.size() != other.robots.size() || placements.size() != other.placements.size() ||
+      joined != other.joined) {
     return false;
   }
   for (std::size_t r = 0; r < robots.size(); ++r) {
@@ -65,6 +85,10 @@ std::size_t GeometricState::hashValue() const {
   for (const Placement& placement : placements) {
     combine(seed, placement.present ? 1U : 0U);
     combinePose(seed, placement.pose);
+  }
+  for (const auto& [a, b] : joined) {
+    combine(seed, a);
+    combine(seed, b);
   }
   return seed;
 }

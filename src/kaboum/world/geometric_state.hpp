@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "kaboum/collision/robot_collision.hpp"
@@ -25,11 +26,21 @@ struct RobotState {
 
 // Equality and hash compare exact doubles (configurations, poses): two states are equal only when
 // bit-for-bit the same values (0.0 and -0.0 aside), so states reached by different arithmetic are
-// different states. A held object is compared by its object id, link and grasp pose.
+// different states. A held object is compared by its object id, link and grasp pose; joined pairs
+// are compared too.
 struct GeometricState {
   std::vector<RobotState> robots;  // in the World's robot order
   SceneState placements;           // one per movable object, at CollisionScene::slot
   // (a held object's placement is absent)
+  // Pairs of movable objects joined by an assembly (object ids, first < second, in order): they
+  // touch where they fit into each other, and no collision query checks one against the other.
+  std::vector<std::pair<std::size_t, std::size_t>> joined;
+
+  // Records that objects `a` and `b` are joined (once).
+  void join(std::size_t a, std::size_t b);
+  [[nodiscard]] bool areJoined(std::size_t a, std::size_t b) const;
+  // Whether object `object` is joined to some other object.
+  [[nodiscard]] bool isJoined(std::size_t object) const;
 
   [[nodiscard]] bool operator==(const GeometricState& other) const;
   [[nodiscard]] std::size_t hashValue() const;

@@ -472,6 +472,7 @@ QueryScratch World::scratch() const {
     scratch.linkPoses.emplace_back(robot.collision.model().links().size());
   }
   scratch.againstRobots.resize(robots_.size());
+  scratch.placements.reserve(scene_.movableCount());
   return scratch;
 }
 
@@ -591,8 +592,16 @@ std::optional<Collision> World::firstCollision(const GeometricState& state,
       }
       continue;
     }
-    if (const auto hit =
-            scene_.firstCollision(state.placements, scene_.body(object), pose, 0.0, object)) {
+    std::span<const Placement> others = state.placements;
+    if (state.isJoined(object)) {
+      scratch.placements.assign(state.placements.begin(), state.placements.end());
+      for (const auto& [a, b] : state.joined) {
+        if (a == object || b == object)
+          scratch.placements[scene_.slot(a == object ? b : a)].present = false;
+      }
+      others = scratch.placements;
+    }
+    if (const auto hit = scene_.firstCollision(others, scene_.body(object), pose, 0.0, object)) {
       return Collision{{Party::Kind::Object, object}, {Party::Kind::Object, *hit}};
     }
   }

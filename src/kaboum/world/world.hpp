@@ -114,6 +114,8 @@ struct Collision {
 struct QueryScratch {
   std::vector<std::vector<Pose>> linkPoses;
   std::vector<std::uint8_t> againstRobots;  // one flag per robot
+  // A state's placements without the objects joined to the one checked (GeometricState::joined).
+  SceneState placements;
 };
 
 class StatePredicates;  // state_predicates.hpp
@@ -172,7 +174,8 @@ class World {
   // The first collision in `state`, checked through the bounded predicates at distance 0 (never
   // missed; may be reported up to the bodies' bounding error apart): each robot in turn (with what
   // it holds) against itself, the scene and the robots after it, then each present movable object
-  // against every other object. A held object is not checked against the link holding it.
+  // against every other object but those joined to it (GeometricState::joined). A held object is
+  // not checked against the link holding it.
   // Throws std::invalid_argument for a state of the wrong shape. Allocates nothing.
   [[nodiscard]] std::optional<Collision> firstCollision(const GeometricState& state,
                                                         QueryScratch& scratch) const;
