@@ -6,7 +6,9 @@
 // collides and is rejected.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,6 +21,7 @@
 #include "kaboum/tamp/assembly_attachments.hpp"
 #include "kaboum/tamp/solver.hpp"
 #include "kaboum/testing/data_paths.hpp"
+#include "kaboum/verify/reference_geometry.hpp"
 
 namespace kaboum::tamp {
 
@@ -140,6 +143,49 @@ TEST(BimanualAssemblyActions, TheGearboxIsAssembledOnTheTableStepByStep) {
   using Kind = GeometricStep::Kind;
   EXPECT_EQ(kinds, (std::vector<Kind>{Kind::Transfer, Kind::Transfer, Kind::Join, Kind::Approach,
                                       Kind::Grasp, Kind::Release, Kind::Retreat}));
+}
+
+// The verifier on the original meshes finds the insertion of the pipe over the tree (its joins and
+// its approach, the transfer before left out) free with the contacts it joins and collides
+// without them: the bearing's bore slides down the tree's shaft of the same radius.
+TEST(BimanualAssemblyActions, TheVerifierAllowsTheJoinedContactsAndNoOthers) {
+  Assembly assembly;
+  assembleGearbox(assembly);
+  ASSERT_EQ(assembly.states.size(), 9u);
+  const ActionGeometry* lowered =
+      assembly.attachments.transition(assembly.states[7], assembly.states[8]);
+  ASSERT_NE(lowered, nullptr);
+  ActionGeometry insertion = *lowered;
+  const auto approach = std::find_if(
+      insertion.steps.begin(), insertion.steps.end(),
+      [](const GeometricStep& step) { return step.kind == GeometricStep::Kind::Approach; });
+  ASSERT_NE(approach, insertion.steps.end());
+  insertion.steps.erase(approach + 1, insertion.steps.end());
+  insertion.steps.erase(insertion.steps.begin());  // the transfer
+  const GeometricState& before = assembly.attachments.map().state(assembly.states[7]);
+  const verify::ReferenceGeometry reference(bimanualWorld());
+  verify::VerifyOptions options;
+  options.jointStep = 1.0 * std::numbers::pi / 180;
+  options.toolStep = 0.002;
+  const auto verification = [&](const ActionGeometry& action) {
+    PlanVerification result;
+    verifyActionPaths(reference, 0, action, statesAlong(bimanualWorld(), before, action), options,
+                      result);
+    return result;
+  };
+  const PlanVerification joined = verification(insertion);
+  EXPECT_EQ(joined.paths, 1u);
+  EXPECT_EQ(joined.collidingPaths, 0u) << joined.firstCollision;
+  ActionGeometry unjoined = insertion;
+  std::erase_if(unjoined.steps,
+                [](const GeometricStep& step) { return step.kind == GeometricStep::Kind::Join; });
+  ASSERT_LT(unjoined.steps.size(), insertion.steps.size());
+  const PlanVerification touching = verification(unjoined);
+  EXPECT_EQ(touching.collidingPaths, 1u);
+  EXPECT_PRED_FORMAT2(::testing::IsSubstring, "assemblePipeTree(comau-left, pipe, tree) step",
+                      touching.firstCollision);
+  EXPECT_PRED_FORMAT2(::testing::IsSubstring, "(approach)", touching.firstCollision);
+  EXPECT_PRED_FORMAT2(::testing::IsSubstring, "object 'tree'", touching.firstCollision);
 }
 
 // Each action refuses what Table 6.6's preconditions exclude, whatever the symbolic state says:
