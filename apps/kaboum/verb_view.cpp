@@ -73,13 +73,13 @@ int run(const Options& options) {
       options.linkPosesAt.empty() ? std::vector<double>{} : timesOf(options.linkPosesAt);
   const nlohmann::json planJson = io::readJsonFile(options.plan);
   if (!planJson.is_object()) throw InputError(options.plan + ": expected a plan file (an object)");
-  const symbolic::ContingentProblem problem =
-      symbolic::loadContingent(sourceFile(planJson, options.plan, "domain", options.domain),
-                               sourceFile(planJson, options.plan, "problem", options.problem));
+  const std::string domain = sourceFile(planJson, options.plan, "domain", options.domain);
+  const std::string problemFile = sourceFile(planJson, options.plan, "problem", options.problem);
+  const std::string scene = sourceFile(planJson, options.plan, "scene", options.scene);
+  const symbolic::ContingentProblem problem = symbolic::loadContingent(domain, problemFile);
   printWarnings(problem.domain.warnings);
   printWarnings(problem.problem.warnings);
-  const world::World world =
-      loadWorld(sourceFile(planJson, options.plan, "scene", options.scene), options.load);
+  const world::World world = loadWorld(scene, options.load);
   tamp::GeometricAttachments attachments(world);
   symbolic::ProcedureRegistry registry;
   attachments.registerProcedures(registry);
