@@ -8,6 +8,16 @@ import { buildScene } from './scene.js';
 import { buildRun, sampleRobot } from './timeline.js';
 import { buildControls, listRun } from './ui.js';
 
+// Whether WebGL runs on a software renderer (SwiftShader, llvmpipe): there antialiasing would
+// halve the frame rate, so the page draws without it.
+function softwareRendering() {
+  const gl = document.createElement('canvas').getContext('webgl2');
+  const info = gl && gl.getExtension('WEBGL_debug_renderer_info');
+  const name = info ? String(gl.getParameter(info.UNMASKED_RENDERER_WEBGL)) : '';
+  gl?.getExtension('WEBGL_lose_context')?.loseContext();
+  return /swiftshader|llvmpipe|software/i.test(name);
+}
+
 async function start() {
   const data = readPageData();
   const library = new GeometryLibrary(await unpackGeometry(data.geometry));
@@ -19,7 +29,7 @@ async function start() {
   const grasped = data.objects.map(() => new THREE.Matrix4());
   const holders = new Array(data.objects.length);
 
-  const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+  const renderer = new THREE.WebGLRenderer({ antialias: !softwareRendering() });
   renderer.setPixelRatio(window.devicePixelRatio);
   controls.view.append(renderer.domElement);
   const camera = new THREE.PerspectiveCamera(45, 1, 0.01, 100);

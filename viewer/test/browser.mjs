@@ -71,8 +71,10 @@ export async function openPage(context, file) {
 }
 
 // How many distinct colours the canvas shows (read back at a coarse grid): 1 for a blank canvas.
+// Read in an animation frame callback after the viewer's, while its drawing is still there.
 export async function canvasColours(page) {
-  return page.evaluate(() => {
+  return page.evaluate(async () => {
+    await new Promise((drawn) => requestAnimationFrame(drawn));
     const source = document.querySelector('#kaboum-view canvas');
     const copy = document.createElement('canvas');
     copy.width = 160;
