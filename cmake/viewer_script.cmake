@@ -17,7 +17,8 @@ function(kaboum_add_viewer_script target)
   set(generated ${CMAKE_CURRENT_BINARY_DIR}/viewer_script.cpp)
   add_custom_command(
     OUTPUT ${generated} ${CMAKE_CURRENT_BINARY_DIR}/viewer.js
-    COMMAND ${KABOUM_NODE} ${viewer_dir}/build.mjs ${generated} ${CMAKE_CURRENT_BINARY_DIR}/viewer.js
+    COMMAND ${KABOUM_NODE} ${viewer_dir}/build.mjs ${generated}
+            ${CMAKE_CURRENT_BINARY_DIR}/viewer.js
     DEPENDS ${viewer_sources} ${viewer_dir}/build.mjs ${viewer_dir}/package-lock.json
     COMMENT "Bundling the viewer's script (esbuild)"
     VERBATIM)

@@ -30,7 +30,8 @@ viewer_packages=(chromium)
 command -v npm >/dev/null 2>&1 || viewer_packages+=(nodejs npm)
 viewer_missing=()
 for p in "${viewer_packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || viewer_missing+=("$p")
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" ||
+    viewer_missing+=("$p")
 done
 if [ ${#viewer_missing[@]} -gt 0 ]; then
   SUDO=""
@@ -41,6 +42,7 @@ if [ ${#viewer_missing[@]} -gt 0 ]; then
 fi
 viewer_dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/../viewer" && pwd)"
 if ! cmp -s "$viewer_dir/package-lock.json" "$viewer_dir/node_modules/.kaboum-installed-lock"; then
-  (cd "$viewer_dir" && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --ignore-scripts --no-audit --no-fund &&
+  (cd "$viewer_dir" &&
+    PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --ignore-scripts --no-audit --no-fund &&
     cp package-lock.json node_modules/.kaboum-installed-lock)
 fi

@@ -45,7 +45,7 @@ async function start() {
   let frames = 0;
 
   // Robots at their configurations at `time`; objects replayed through the gripper events up to
-  // it (a release by a robot not holding the object — the giver of a handover — changes nothing).
+  // it (a release by a robot not holding the object, the giver of a handover, changes nothing).
   function pose() {
     kinematics.forEach((robot, r) => {
       robot.update(sampleRobot(run, data, r, time, configurations[r]));
@@ -167,7 +167,8 @@ async function start() {
     setSpeed: (value) => (speed = Number(value)),
     frames: () => frames,
     actions: () => run.actions.map(({ node, name, start, end }) => ({ node, name, start, end })),
-    branches: () => run.branches.map(({ node, test, value, time: t }) => ({ node, test, value, time: t })),
+    branches: () =>
+      run.branches.map(({ node, test, value, time: at }) => ({ node, test, value, time: at })),
     branch: chooseBranch,
     showPieces: (on) => {
       controls.pieces.checked = Boolean(on);

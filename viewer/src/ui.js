@@ -14,7 +14,8 @@ html, body { margin: 0; height: 100%; overflow: hidden; font: 13px system-ui, sa
   box-sizing: border-box; padding: 8px; background: #fafafa; border-left: 1px solid #ccc; }
 #kaboum-side h2 { font-size: 14px; margin: 8px 0 4px; }
 #kaboum-actions { list-style: none; padding: 0; margin: 0; }
-#kaboum-actions li { padding: 3px 4px; cursor: pointer; border-radius: 3px; font-family: monospace; }
+#kaboum-actions li { padding: 3px 4px; cursor: pointer; border-radius: 3px;
+  font-family: monospace; }
 #kaboum-actions li:hover { background: #e4e8f0; }
 #kaboum-actions li.current { background: #ffd98a; }
 #kaboum-actions li.sensing { cursor: default; color: #555; }

@@ -52,7 +52,10 @@ function solve(example, problem, name) {
   ]);
   const page = join(outDir, `${name}.html`);
   const summary = JSON.parse(kaboumRun(['view', plan, '-o', page, '--json']));
-  check(summary.bytes > 0 && summary.meshes > 0 && summary.pieces > 0, `${name}: ${summary.bytes} bytes, ${summary.meshes} meshes, ${summary.pieces} pieces`);
+  check(
+    summary.bytes > 0 && summary.meshes > 0 && summary.pieces > 0,
+    `${name}: ${summary.bytes} bytes, ${summary.meshes} meshes, ${summary.pieces} pieces`,
+  );
   return { plan, page, solvedPage, summary };
 }
 
@@ -101,10 +104,8 @@ async function comparePoses(page, name, plan, times) {
 // Every branch timing `kaboum execute` prints: "branch 1: [(test) true] 6 action(s), 31.8 s".
 function executeBranches(example, problem, plan) {
   const dir = join('examples', example);
-  const text = kaboumRun(
-    ['execute', join(dir, 'domain.pddl'), join(dir, problem), join(dir, 'scene.yaml'), plan, '--ask'],
-    'y\n'.repeat(16),
-  );
+  const files = [join(dir, 'domain.pddl'), join(dir, problem), join(dir, 'scene.yaml')];
+  const text = kaboumRun(['execute', ...files, plan, '--ask'], 'y\n'.repeat(16));
   return [...text.matchAll(/^branch \d+: \[(.*)\] (\d+) action\(s\), ([0-9.]+) s$/gm)].map(
     (m) => ({ outcomes: m[1], actions: Number(m[2]), seconds: Number(m[3]) }),
   );
@@ -112,8 +113,8 @@ function executeBranches(example, problem, plan) {
 
 async function opened(context, name, file) {
   const { page, errors, requests } = await openPage(context, file);
-  check(errors.length === 0, `${name}: no console errors${errors.length ? `: ${errors.join(' | ')}` : ''}`);
-  check(requests.length === 0, `${name}: fetches nothing${requests.length ? `: ${requests.join(' ')}` : ''}`);
+  check(errors.length === 0, `${name}: no console errors ${errors.join(' | ')}`);
+  check(requests.length === 0, `${name}: fetches nothing ${requests.join(' ')}`);
   const colours = await canvasColours(page);
   check(colours > 20, `${name}: the canvas is drawn (${colours} colours)`);
   return page;
@@ -124,11 +125,18 @@ const browser = await openBrowser();
 try {
   // Pick and place: one robot, no sensing; the page of `solve --html` and of `view`.
   const pick = solve('pick-and-place', 'problem.pddl', 'pick-and-place');
-  const solvedPage = await opened(browser.context, 'pick-and-place (solve --html)', pick.solvedPage);
+  const solvedPage = await opened(
+    browser.context,
+    'pick-and-place (solve --html)',
+    pick.solvedPage,
+  );
   await solvedPage.close();
   const page = await opened(browser.context, 'pick-and-place', pick.page);
   const duration = await page.evaluate(() => window.kaboum.duration());
-  check(Math.abs(duration - pick.summary.duration) < 1e-9, `pick-and-place: plays ${duration.toFixed(3)} s, as kaboum times it`);
+  check(
+    Math.abs(duration - pick.summary.duration) < 1e-9,
+    `pick-and-place: plays ${duration.toFixed(3)} s, as kaboum times it`,
+  );
   const times = [0, 0.137, 0.25, 0.5, 0.75, 0.9, 1].map((f) => Number((f * duration).toFixed(6)));
   await comparePoses(page, 'pick-and-place', pick.plan, times);
   const objects = await page.evaluate(() => {
@@ -153,7 +161,10 @@ try {
   const barPage = await opened(browser.context, 'bartender-1', bar.page);
   const expected = executeBranches('bartender', 'problem-1.pddl', bar.plan);
   const branches = await barPage.evaluate(() => window.kaboum.branches());
-  check(branches.length === 1 && expected.length === 2, `bartender-1: one sensing branch on the way, ${expected.length} ways through the plan`);
+  check(
+    branches.length === 1 && expected.length === 2,
+    `bartender-1: one sensing branch on the way, ${expected.length} ways through the plan`,
+  );
   for (const value of [true, false]) {
     const shown = await barPage.evaluate(
       ({ node, value }) => {
@@ -165,7 +176,8 @@ try {
     const way = expected.find((b) => b.outcomes === `${branches[0].test} ${value}`);
     check(
       way && way.actions === shown.actions && Math.abs(way.seconds - shown.duration) < 1e-3,
-      `bartender-1: ${branches[0].test} ${value}: ${shown.actions} actions in ${shown.duration.toFixed(3)} s as kaboum execute (${way ? `${way.actions}, ${way.seconds}` : 'none'})`,
+      `bartender-1: ${branches[0].test} ${value}: ${shown.actions} actions in ` +
+        `${shown.duration.toFixed(3)} s as kaboum execute (${JSON.stringify(way)})`,
     );
     await barPage.evaluate(() => window.kaboum.seek(window.kaboum.duration() * 0.6));
     await barPage.screenshot({ path: join(outDir, `bartender-1-${value}.png`) });
@@ -174,5 +186,6 @@ try {
 } finally {
   await browser.close();
 }
-console.log(`${failures.length ? 'FAILED' : 'passed'} in ${((Date.now() - started) / 1000).toFixed(1)} s`);
+const seconds = ((Date.now() - started) / 1000).toFixed(1);
+console.log(`${failures.length ? 'FAILED' : 'passed'} in ${seconds} s`);
 process.exit(failures.length ? 1 : 0);

@@ -5,7 +5,11 @@ import { haveChromium, openBrowser, openPage, playingFrameRate } from './browser
 
 const [file, seconds = '10'] = process.argv.slice(2);
 if (!file || !haveChromium()) {
-  console.error(file ? 'frame_rate.mjs: no Chromium (scripts/setup.sh)' : 'usage: node frame_rate.mjs PAGE.html [SECONDS]');
+  console.error(
+    file
+      ? 'frame_rate.mjs: no Chromium (scripts/setup.sh)'
+      : 'usage: node frame_rate.mjs PAGE.html [SECONDS]',
+  );
   process.exit(2);
 }
 const browser = await openBrowser();
@@ -20,7 +24,8 @@ try {
     const info = gl.getExtension('WEBGL_debug_renderer_info');
     return info ? gl.getParameter(info.UNMASKED_RENDERER_WEBGL) : 'unknown';
   });
-  console.log(JSON.stringify({ page: file, open_seconds: openSeconds, frames_per_second: fps, viewport: '1280x720', renderer }));
+  const result = { page: file, open_seconds: openSeconds, frames_per_second: fps, renderer };
+  console.log(JSON.stringify({ ...result, viewport: '1280x720' }));
 } finally {
   await browser.close();
 }

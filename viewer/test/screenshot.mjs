@@ -4,7 +4,11 @@ import { haveChromium, openBrowser, openPage } from './browser.mjs';
 
 const [file, out, fraction = '0.5', look = ''] = process.argv.slice(2);
 if (!out || !haveChromium()) {
-  console.error(out ? 'screenshot.mjs: no Chromium (scripts/setup.sh)' : 'usage: node screenshot.mjs PAGE.html OUT.png [FRACTION] [pieces]');
+  console.error(
+    out
+      ? 'screenshot.mjs: no Chromium (scripts/setup.sh)'
+      : 'usage: node screenshot.mjs PAGE.html OUT.png [FRACTION] [pieces]',
+  );
   process.exit(2);
 }
 const browser = await openBrowser();
