@@ -16,9 +16,9 @@ if [ -z "$plan" ]; then
   start=$(date +%s.%N)
   "$kaboum" solve $example/domain.pddl $example/problem.pddl $example/scene.yaml --search dfs \
     --no-verify --quiet --plan-out "$plan" > /dev/null
-  echo "solved in $(echo "$(date +%s.%N) - $start" | bc) s"
+  printf "solved in %.1f s\n" "$(echo "$(date +%s.%N) - $start" | bc)"
 fi
 start=$(date +%s.%N)
 "$kaboum" view "$plan" -o "$out/page.html" --json
-echo "written in $(echo "$(date +%s.%N) - $start" | bc) s"
+printf "written in %.2f s\n" "$(echo "$(date +%s.%N) - $start" | bc)"
 node viewer/test/frame_rate.mjs "$out/page.html" 10
