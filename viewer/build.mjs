@@ -23,8 +23,8 @@ const result = buildSync({
 });
 const script = result.outputFiles[0].contents;
 const text = Buffer.from(script).toString('utf8');
-if (/<\/script/i.test(text)) {
-  console.error('build.mjs: the bundle contains "</script", which would end the page\'s element');
+if (/<\/script|<!--/i.test(text)) {
+  console.error('build.mjs: the bundle contains "</script" or "<!--", which would break the page\'s script element');
   process.exit(1);
 }
 if (bundleFile) writeFileSync(bundleFile, script);

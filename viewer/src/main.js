@@ -8,8 +8,8 @@ import { buildScene } from './scene.js';
 import { buildRun, sampleRobot } from './timeline.js';
 import { buildControls, listRun } from './ui.js';
 
-// Whether WebGL runs on a software renderer (SwiftShader, llvmpipe): there antialiasing would
-// halve the frame rate, so the page draws without it.
+// Whether WebGL runs on a software renderer (SwiftShader, llvmpipe): there the page draws without
+// antialiasing, and at half resolution while playing, to keep its frame rate.
 function softwareRendering() {
   const gl = document.createElement('canvas').getContext('webgl2');
   const info = gl && gl.getExtension('WEBGL_debug_renderer_info');
@@ -29,7 +29,8 @@ async function start() {
   const grasped = data.objects.map(() => new THREE.Matrix4());
   const holders = new Array(data.objects.length);
 
-  const renderer = new THREE.WebGLRenderer({ antialias: !softwareRendering() });
+  const software = softwareRendering();
+  const renderer = new THREE.WebGLRenderer({ antialias: !software });
   renderer.setPixelRatio(window.devicePixelRatio);
   controls.view.append(renderer.domElement);
   const camera = new THREE.PerspectiveCamera(45, 1, 0.01, 100);
@@ -100,6 +101,7 @@ async function start() {
   function setPlaying(on) {
     playing = on;
     if (playing && time >= run.duration) time = 0;
+    if (software) renderer.setPixelRatio(window.devicePixelRatio * (playing ? 0.5 : 1));
     controls.play.textContent = playing ? 'Pause' : 'Play';
   }
 
