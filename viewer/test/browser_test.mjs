@@ -2,8 +2,8 @@
 // solve --html` and `kaboum view` from the Pick and Place and Bartender examples, opened from
 // file:// URLs in headless Chromium. Fails on any console error or fetched resource, a blank
 // canvas, link poses that differ from kaboum's forward kinematics at the same times (`kaboum view
-// --link-poses-at`), or a sensing branch whose chosen outcome does not give the actions and the
-// duration `kaboum execute` gives that branch. Takes screenshots into OUT_DIR.
+// --link-poses-at`), or a way through the sensing branches, chosen in the page, whose actions and
+// duration differ from those `kaboum execute` gives it. Takes screenshots into OUT_DIR.
 // Usage: node browser_test.mjs KABOUM SOURCE_DIR OUT_DIR  (exit 0 passed, 1 failed, 77 skipped)
 import { execFileSync } from 'node:child_process';
 import { mkdirSync, readFileSync, rmSync } from 'node:fs';
@@ -113,8 +113,8 @@ function executeBranches(example, problem, plan) {
 
 async function opened(context, name, file) {
   const { page, errors, requests } = await openPage(context, file);
-  check(errors.length === 0, `${name}: no console errors ${errors.join(' | ')}`);
-  check(requests.length === 0, `${name}: fetches nothing ${requests.join(' ')}`);
+  check(errors.length === 0, [`${name}: no console errors`, ...errors].join(': '));
+  check(requests.length === 0, [`${name}: fetches nothing`, ...requests].join(': '));
   const colours = await canvasColours(page);
   check(colours > 20, `${name}: the canvas is drawn (${colours} colours)`);
   return page;
@@ -156,31 +156,52 @@ try {
   await page.screenshot({ path: join(outDir, 'pick-and-place-pieces.png') });
   await page.close();
 
-  // Bartender with one bottle of unknown content: a plan that branches on sensing.
-  const bar = solve('bartender', 'problem-1.pddl', 'bartender-1');
-  const barPage = await opened(browser.context, 'bartender-1', bar.page);
-  const expected = executeBranches('bartender', 'problem-1.pddl', bar.plan);
-  const branches = await barPage.evaluate(() => window.kaboum.branches());
+  // Bartender with two bottles of unknown content: a plan that branches on sensing, a branch in
+  // each branch. Every way through it, chosen in the page, against kaboum execute.
+  const bar = solve('bartender', 'problem-2.pddl', 'bartender-2');
+  const barPage = await opened(browser.context, 'bartender-2', bar.page);
+  const expected = executeBranches('bartender', 'problem-2.pddl', bar.plan);
+  const shown = await barPage.evaluate(() => {
+    const viewer = window.kaboum;
+    const ways = [];
+    // Depth first, true before false, as kaboum execute lists them.
+    const walk = (chosen) => {
+      const branches = viewer.branches();
+      const open = branches.find((branch) => !chosen.has(branch.node));
+      if (!open) {
+        const outcomes = branches.map((branch) => `${branch.test} ${branch.value}`).join(', ');
+        ways.push({ outcomes, actions: viewer.actions().length, seconds: viewer.duration() });
+        return;
+      }
+      for (const value of [true, false]) {
+        viewer.branch(open.node, value);
+        walk(new Set([...chosen, open.node]));
+      }
+    };
+    walk(new Set());
+    return ways;
+  });
   check(
-    branches.length === 1 && expected.length === 2,
-    `bartender-1: one sensing branch on the way, ${expected.length} ways through the plan`,
+    expected.length === 4 && shown.length === expected.length,
+    `bartender-2: ${shown.length} ways through the plan chosen in the page, ` +
+      `${expected.length} in kaboum execute`,
   );
-  for (const value of [true, false]) {
-    const shown = await barPage.evaluate(
-      ({ node, value }) => {
-        window.kaboum.branch(node, value);
-        return { actions: window.kaboum.actions().length, duration: window.kaboum.duration() };
-      },
-      { node: branches[0].node, value },
-    );
-    const way = expected.find((b) => b.outcomes === `${branches[0].test} ${value}`);
+  expected.forEach((way, i) => {
+    const page = shown[i] || {};
     check(
-      way && way.actions === shown.actions && Math.abs(way.seconds - shown.duration) < 1e-3,
-      `bartender-1: ${branches[0].test} ${value}: ${shown.actions} actions in ` +
-        `${shown.duration.toFixed(3)} s as kaboum execute (${JSON.stringify(way)})`,
+      page.outcomes === way.outcomes &&
+        page.actions === way.actions &&
+        Math.abs(page.seconds - way.seconds) < 1e-3,
+      `bartender-2: [${way.outcomes}] ${way.actions} actions in ${way.seconds} s, as the page ` +
+        `plays it (${JSON.stringify(page)})`,
     );
-    await barPage.evaluate(() => window.kaboum.seek(window.kaboum.duration() * 0.6));
-    await barPage.screenshot({ path: join(outDir, `bartender-1-${value}.png`) });
+  });
+  for (const value of [true, false]) {
+    await barPage.evaluate((value) => {
+      window.kaboum.branch(window.kaboum.branches()[0].node, value);
+      window.kaboum.seek(window.kaboum.duration() * 0.6);
+    }, value);
+    await barPage.screenshot({ path: join(outDir, `bartender-2-${value}.png`) });
   }
   await barPage.close();
 } finally {
