@@ -170,6 +170,23 @@ TEST(ViewCli, WritesTheSelfContainedPageAndItsSummary) {
   EXPECT_EQ(pageData(html)["title"], "pick-and-place.plan.json");
 }
 
+TEST(SolveCli, HtmlWritesThePageOfThePlanItFound) {
+  test::ScratchDir dir;
+  const auto example = [](const std::string& file) {
+    return quoted(testing::exampleFile("pick-and-place/" + file));
+  };
+  const std::string solve = "solve " + example("domain.pddl") + example("problem.pddl") +
+                            example("scene.yaml") + test::sharedCacheOption() + " --quiet --html ";
+  const test::CliResult result = test::runCli(dir, solve + quoted(dir.file("page.html")));
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const nlohmann::json data = pageData(test::slurp(dir.file("page.html")));
+  std::size_t actions = 0;
+  for (const nlohmann::json& node : data["nodes"]) actions += node["kind"] == "action" ? 1 : 0;
+  EXPECT_EQ(actions, 2U);
+  expectBadInput(test::runCli(dir, solve + quoted(dir.file("missing/page.html"))),
+                 "page.html: cannot write the page");
+}
+
 TEST(ViewCli, BadInputIsOneLineWithExitCodeTwo) {
   test::ScratchDir dir;
   const std::string plan = test::slurp(exec::execData("pick-and-place.plan.json"));
