@@ -5,6 +5,7 @@
 // names unless given. Exit code 0, or 2 on bad input.
 #include <fmt/format.h>
 
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 
@@ -31,7 +32,7 @@ struct Options {
   SceneLoadOptions load;
 };
 
-// The file `key` of the plan file unless `given`.
+// The file `key` of the plan file unless `given`; it must exist from the working directory.
 std::string sourceFile(const nlohmann::json& plan, const std::string& planFile,
                        const std::string& key, const std::string& given) {
   if (!given.empty()) return given;
@@ -40,7 +41,14 @@ std::string sourceFile(const nlohmann::json& plan, const std::string& planFile,
     throw InputError(
         fmt::format("{}: {}: expected the {} file's name (or give --{})", planFile, key, key, key));
   }
-  return found->get<std::string>();
+  const std::string name = found->get<std::string>();
+  if (!std::filesystem::exists(name)) {
+    throw InputError(fmt::format(
+        "{}: {}: '{}' does not exist here (the plan names it as kaboum solve was given it: run "
+        "kaboum view from that folder, or give --{})",
+        planFile, key, name, key));
+  }
+  return name;
 }
 
 // "0.5,1,2.25" as times in seconds.

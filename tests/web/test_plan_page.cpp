@@ -191,12 +191,17 @@ TEST(ViewCli, BadInputIsOneLineWithExitCodeTwo) {
   test::ScratchDir dir;
   const std::string plan = test::slurp(exec::execData("pick-and-place.plan.json"));
   nlohmann::json noScene = nlohmann::json::parse(plan);
+  noScene["domain"] = testing::exampleFile("pick-and-place/domain.pddl");
+  noScene["problem"] = testing::exampleFile("pick-and-place/problem.pddl");
   noScene.erase("scene");
   const std::string noSceneFile = dir.write("no-scene.json", noScene.dump());
   expectBadInput(
       test::runCli(dir, "view " + quoted(noSceneFile) + "-o " + quoted(dir.file("page.html"))),
       "no-scene.json: scene: expected the scene file's name (or give --scene)");
   const std::string planFile = quoted(exec::execData("pick-and-place.plan.json"));
+  expectBadInput(test::runCli(dir, "view " + planFile + "-o " + quoted(dir.file("page.html"))),
+                 "pick-and-place.plan.json: domain: 'examples/pick-and-place/domain.pddl' does not "
+                 "exist here");
   expectBadInput(
       test::runCli(dir, "view " + planFile + pickAndPlaceFiles() + "--link-poses-at 0,soon"),
       "--link-poses-at: 'soon' is no time in seconds (>= 0)");
