@@ -106,6 +106,11 @@ async function start() {
   }
 
   controls.play.addEventListener('click', () => setPlaying(!playing));
+  window.addEventListener('keydown', (event) => {
+    if (event.code !== 'Space' || event.target.closest('select, input, button')) return;
+    event.preventDefault();
+    setPlaying(!playing);
+  });
   controls.speed.addEventListener('change', () => (speed = Number(controls.speed.value)));
   controls.timeline.addEventListener('input', () => {
     seek(Number(controls.timeline.value) * run.duration);

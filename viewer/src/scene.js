@@ -48,12 +48,11 @@ function addShapes(group, shapes, material, library) {
   }
 }
 
-let pieceCount = 0;
 function addPieces(group, entries, library, origin) {
   for (const entry of entries) {
     const mesh = new THREE.Mesh(
       library.geometry(entry),
-      pieceMaterials[pieceCount++ % pieceMaterials.length],
+      pieceMaterials[entry % pieceMaterials.length],
     );
     mesh.matrixAutoUpdate = false;
     if (origin) mesh.matrix.copy(origin);
