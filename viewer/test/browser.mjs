@@ -39,6 +39,7 @@ export async function openBrowser({ width = 1280, height = 720 } = {}) {
   });
   return {
     context,
+    profile,
     async close() {
       await context.close();
       rmSync(profile, { recursive: true, force: true });
