@@ -12,6 +12,7 @@
 #include "kaboum/symbolic/heuristic.hpp"
 #include "kaboum/tamp/plan_file.hpp"
 #include "kaboum/verify/exact_predicates.hpp"
+#include "page_cli.hpp"
 #include "scene_cli.hpp"
 #include "verb.hpp"
 
@@ -28,6 +29,7 @@ struct Options {
   std::string placement = "random";
   std::string geometry = "bounded";
   std::string planOut;
+  std::string html;
   bool json = false;
   bool quiet = false;
 };
@@ -132,6 +134,13 @@ int run(Options& options) {
       throw InputError(locate(options.planOut, "cannot write the plan file"));
     }
   }
+  if (solved && !options.html.empty()) {
+    const tamp::PlanFileContents contents =
+        tamp::readPlanFile(plan, options.files.problem, solver.task(), world);
+    const std::string name = options.planOut.empty() ? options.files.problem : options.planOut;
+    const web::PageSummary page = writePlanPage(options.html, name, world, solver.task(), contents);
+    if (!options.quiet) std::cerr << pageLine(options.html, page) << "\n";
+  }
   if (options.json) {
     std::cout << plan.dump(2) << "\n";
   } else if (result.status == PlannerStatus::Solved) {
@@ -228,6 +237,8 @@ VerbRunner setup(CLI::App& command) {
       "still runs)");
   addSceneLoadOptions(command, options->load);
   command.add_option("--plan-out", options->planOut, "Write the plan file (JSON) to FILE");
+  command.add_option("--html", options->html,
+                     "Write the plan as a self-contained 3-D web page to FILE (docs/viewer.md)");
   command.add_flag("--json", options->json, "Print the plan file (JSON) on stdout");
   command.add_flag("--quiet", options->quiet, "No progress or summary on stderr");
   return [options] { return run(*options); };
