@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "kaboum/core/error.hpp"
+#include "kaboum/symbolic/planner.hpp"
 #include "kaboum/symbolic/task.hpp"
 #include "symbolic_test_support.hpp"
 
@@ -51,7 +52,7 @@ TEST(Grounder, PrunesUnreachableOperators) {
   EXPECT_TRUE(hasOperator(task, "go a b"));
   EXPECT_TRUE(hasOperator(task, "go b c"));
   EXPECT_FALSE(hasOperator(task, "take island"));  // never reachable
-  EXPECT_TRUE(task.goal.empty());                  // (rich) is unreachable: unsolvable
+  EXPECT_FALSE(task.goal.reachable);               // (rich) is unreachable: unsolvable
 }
 
 TEST(Grounder, CompilesAdlFeatures) {
@@ -75,7 +76,35 @@ TEST(Grounder, CompilesAdlFeatures) {
   const auto paint = std::find_if(task.operators.begin(), task.operators.end(),
                                   [](const Operator& op) { return op.name == "paint c"; });
   ASSERT_NE(paint, task.operators.end());
-  EXPECT_EQ(task.goal.size(), 1u);
+  EXPECT_TRUE(task.goal.conjunctive());
+}
+
+// A goal ∧_i (φ_i ∨ ψ_i) over 13 objects is 13 clauses of two conditions; its normal form would
+// have 2^13 = 8192 disjuncts, beyond the grounder's limit. The heuristic searches reach it.
+TEST(Grounder, GoalConjunctsKeepTheirOwnDisjunctions) {
+  const Domain domain = parseDomain(R"((define (domain lamps)
+    (:predicates (red ?x) (green ?x) (done))
+    (:action paint-red :parameters (?x) :effect (red ?x))
+    (:action paint-green :parameters (?x) :effect (green ?x))
+    (:action finish :parameters () :effect (done))))",
+                                    "lamps.pddl");
+  std::string objects;
+  for (int i = 1; i <= 13; ++i) objects += " l" + std::to_string(i);
+  const Problem problem = parseProblem("(define (problem p) (:domain lamps) (:objects" + objects +
+                                           ") (:init (red l1)) (:goal (and (done) (forall (?x) "
+                                           "(or (red ?x) (green ?x))))))",
+                                       "p.pddl", domain);
+  const GroundTask task = ground(domain, problem);
+  EXPECT_TRUE(task.goal.reachable);
+  EXPECT_EQ(task.goal.conjunction.positive.size(), 1u);  // (done)
+  EXPECT_EQ(task.goal.clauses.size(), 13u);
+  for (const std::string mode : {"gbfs", "astar"}) {
+    SearchOptions options;
+    options.mode = mode;
+    const PlanReport report = plan(domain, problem, {}, options);
+    ASSERT_EQ(report.search.status, PlannerStatus::Solved) << mode;
+    EXPECT_EQ(report.plan.size(), 13u) << mode;  // finish and one paint per lamp but l1
+  }
 }
 
 TEST(Grounder, SplitsDisjunctivePreconditions) {

@@ -88,7 +88,11 @@ bool readsAttachmentValues(const GroundTask& task) {
       }
     }
   }
-  return std::any_of(task.goal.begin(), task.goal.end(), conditionReads);
+  return conditionReads(task.goal.conjunction) ||
+         std::any_of(task.goal.clauses.begin(), task.goal.clauses.end(),
+                     [&](const std::vector<Condition>& clause) {
+                       return std::any_of(clause.begin(), clause.end(), conditionReads);
+                     });
 }
 
 // A symbolic transition: a knowledge state's symbolicKey and an operator.

@@ -66,8 +66,9 @@ class Grounder {
       for (const Binding& binding : applicable_[a]) instantiate(domain_.actions[a], binding);
     }
     Binding goalBinding(problem_.goalSlotTypes.size(), 0);
-    task_.goal = dnf(problem_.goal, goalBinding, problem_.goalSlotTypes, true, problem_.goal.pos,
-                     problem_.file);
+    slotTypes_ = &problem_.goalSlotTypes;
+    addGoalConjuncts(problem_.goal, goalBinding, true);
+    if (!task_.goal.reachable) task_.goal = Goal{false, {}, {}};
     finishFluents();
     task_.statistics.reachableAtoms = task_.atomNames.size();
     task_.statistics.operators = task_.operators.size();
@@ -461,6 +462,35 @@ class Grounder {
     cat(into.fluentTests, from.fluentTests);
     cat(into.numericTests, from.numericTests);
     cat(into.moduleChecks, from.moduleChecks);
+  }
+
+  // Splits the goal (or its negation when !positive) at its conjunctions — `and`, `forall`, and
+  // under a negation `or`, `exists` — and adds each other conjunct's disjunctive normal form to
+  // task_.goal: one condition to the conjunction, several as a clause, none makes it unreachable.
+  void addGoalConjuncts(const Formula& formula, Binding& binding, bool positive) {
+    using Kind = Formula::Kind;
+    const Kind conjunction = positive ? Kind::And : Kind::Or;
+    const Kind universal = positive ? Kind::Forall : Kind::Exists;
+    if (formula.kind == Kind::Not) {
+      addGoalConjuncts(formula.children[0], binding, !positive);
+    } else if (formula.kind == conjunction) {
+      for (const Formula& child : formula.children) addGoalConjuncts(child, binding, positive);
+    } else if (formula.kind == universal) {
+      forEachInstance(formula.slots, 0, binding, [&]() {
+        addGoalConjuncts(formula.children[0], binding, positive);
+        return true;
+      });
+    } else {
+      Dnf conjunct =
+          dnf(formula, binding, problem_.goalSlotTypes, positive, problem_.goal.pos, problem_.file);
+      if (conjunct.empty()) {
+        task_.goal.reachable = false;
+      } else if (conjunct.size() == 1) {
+        append(task_.goal.conjunction, conjunct[0]);
+      } else {
+        task_.goal.clauses.push_back(std::move(conjunct));
+      }
+    }
   }
 
   // Disjunctive normal form of `formula` (or of its negation when !positive), simplified with

@@ -16,7 +16,7 @@ class BlindHeuristic : public Heuristic {
   explicit BlindHeuristic(const GroundTask& task) : task_(task) {}
   int evaluate(StateView, std::vector<int>* preferred) override {
     if (preferred != nullptr) preferred->clear();
-    return task_.goal.empty() ? kDeadEnd : 0;
+    return task_.goal.reachable ? 0 : kDeadEnd;
   }
   bool admissible() const override { return true; }
 

@@ -87,7 +87,7 @@ KnowledgeTask::KnowledgeTask(const ContingentProblem& contingent,
   for (const Operator& op : task_.operators) {
     preconditionTests_.push_back(testsOnly(op.precondition));
   }
-  if (task_.goal.size() == 1) goalTests_ = testsOnly(task_.goal[0]);
+  goalTests_ = testsOnly(task_.goal.conjunction);
   scratch_.resize(evaluator_.layout().words());
   composed_.resize(scratch_.size());
   setUpFactoring(representation);
@@ -297,7 +297,7 @@ void KnowledgeTask::setUpFactoring(KnowledgeRepresentation representation) {
 // A goal atom that is unknown initially, that no operator changes and that no operator observes
 // can never become known: reject the problem instead of searching forever.
 void KnowledgeTask::checkGoalKnowable() {
-  if (task_.goal.size() != 1) return;
+  if (!task_.goal.reachable) return;
   std::vector<char> touched(task_.atomNames.size(), 0);
   const auto mark = [&](const EffectList& effect) {
     for (const AtomId a : effect.adds) {
@@ -310,7 +310,7 @@ void KnowledgeTask::checkGoalKnowable() {
     mark(op.effect);
     for (const ConditionalEffect& c : op.conditional) mark(c.effect);
   }
-  const Condition& goal = task_.goal[0];
+  const Condition& goal = task_.goal.conjunction;
   for (const std::vector<AtomId>* atoms : {&goal.positive, &goal.negative}) {
     for (const AtomId atom : *atoms) {
       bool value = false;
@@ -433,12 +433,17 @@ bool KnowledgeTask::allWorlds(const Condition& tests, const Belief& belief) {
   if (tests.fluentTests.empty() && tests.numericTests.empty() && tests.moduleChecks.empty()) {
     return true;
   }
+  if (factored_ && !belief.empty()) {
+    // Factored tests are condition checkers, which answer the same in every world: ask one.
+    compose(belief, -1, 0);
+    return evaluator_.holds(tests, evaluator_.view(composed_));
+  }
   return std::all_of(belief.begin(), belief.end(),
                      [&](std::uint32_t w) { return evaluator_.holds(tests, world(w)); });
 }
 
 bool KnowledgeTask::holds(const Condition& condition, const Belief& belief) {
-  if (factored_) return holdsAtoms(condition, belief);  // factored conditions have no tests
+  if (factored_) return holdsAtoms(condition, belief) && allWorlds(condition, belief);
   return holdsAtoms(condition, belief) &&
          std::all_of(belief.begin(), belief.end(),
                      [&](std::uint32_t w) { return evaluator_.holds(condition, world(w)); });
@@ -477,13 +482,34 @@ bool KnowledgeTask::holdsAtoms(const Condition& condition, const Belief& belief)
 }
 
 bool KnowledgeTask::isGoal(const Belief& belief) {
-  if (task_.goal.empty()) return false;
-  if (task_.goal.size() == 1) {
-    return holdsAtoms(task_.goal[0], belief) && allWorlds(goalTests_, belief);
+  const Goal& goal = task_.goal;
+  if (!goal.reachable || !holdsAtoms(goal.conjunction, belief) || !allWorlds(goalTests_, belief)) {
+    return false;
   }
-  // A disjunctive goal must hold in every world, not necessarily by the same disjunct.
-  return std::all_of(belief.begin(), belief.end(),
-                     [&](std::uint32_t w) { return evaluator_.isGoal(world(w)); });
+  for (std::size_t k = 0; k < goal.clauses.size(); ++k) {
+    if (!clauseHolds(k, belief)) return false;
+  }
+  return true;
+}
+
+// A goal clause must hold in every world, not necessarily by the same condition. Factored, the
+// worlds that differ in the clause's atoms are the local worlds of the one component it reads.
+bool KnowledgeTask::clauseHolds(std::size_t clause, const Belief& belief) {
+  const std::vector<Condition>& conditions = task_.goal.clauses[clause];
+  if (!factored_ || belief.empty()) {
+    return std::all_of(belief.begin(), belief.end(),
+                       [&](std::uint32_t w) { return evaluator_.holdsAny(conditions, world(w)); });
+  }
+  const int c = factoring_.clauseComponent[clause];
+  if (c < 0) {
+    compose(belief, -1, 0);
+    return evaluator_.holdsAny(conditions, evaluator_.view(composed_));
+  }
+  for (const std::uint32_t w : localWorlds_[belief[static_cast<std::size_t>(c) + 1]]) {
+    compose(belief, c, w);
+    if (!evaluator_.holdsAny(conditions, evaluator_.view(composed_))) return false;
+  }
+  return true;
 }
 
 bool KnowledgeTask::apply(int op, const Belief& belief, Belief& out, std::uint32_t sample) {
@@ -508,7 +534,7 @@ bool KnowledgeTask::applyInWorlds(int op, const Belief& belief, Belief& out,
                                   bool effectApplicators) {
   if (factored_ && !belief.empty()) {
     applyFactored(op, belief, out, effectApplicators);
-    return true;  // a factored task calls no attachments, so nothing is infeasible
+    return true;  // a factored task calls no effect applicators, so nothing is infeasible
   }
   out.clear();
   for (const std::uint32_t w : belief) {
@@ -704,7 +730,7 @@ std::uint32_t KnowledgeTask::applyIn(int op, std::uint32_t w, std::uint32_t samp
 }
 
 std::uint64_t KnowledgeTask::symbolicKey(const Belief& belief) {
-  if (factored_) {  // no attachments: the ids are the knowledge
+  if (factored_) {  // no effect applicators: the ids are the knowledge
     std::uint64_t h = 1469598103934665603ull;
     for (const std::uint32_t id : belief) h = (h ^ id) * 1099511628211ull;
     return h;
@@ -981,9 +1007,13 @@ void KnowledgeTask::sharingKey(const Belief& belief, Belief& key) {
   const auto unsettleOwner = [&](AtomId a) {
     if (ownerOf_[a] >= 0) unsettled_[ownerOf_[a]] = 1;
   };
-  if (task_.goal.size() == 1) {
-    for (const AtomId a : task_.goal[0].positive) unsettleOwner(a);
-    for (const AtomId a : task_.goal[0].negative) unsettleOwner(a);
+  const auto unsettleReadBy = [&](const Condition& c) {
+    for (const AtomId a : c.positive) unsettleOwner(a);
+    for (const AtomId a : c.negative) unsettleOwner(a);
+  };
+  unsettleReadBy(task_.goal.conjunction);
+  for (const std::vector<Condition>& clause : task_.goal.clauses) {
+    for (const Condition& c : clause) unsettleReadBy(c);
   }
   for (const AtomId k : knowledgeAtoms_) {  // a pending observation is still to be branched on
     const AtomId base = kwBase_[k];

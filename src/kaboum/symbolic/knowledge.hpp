@@ -138,6 +138,7 @@ class KnowledgeTask {
   bool fluentKnown(FluentId fluent, const Belief& belief);
   bool holdsAtoms(const Condition& condition, const Belief& belief);
   bool allWorlds(const Condition& tests, const Belief& belief);
+  bool clauseHolds(std::size_t clause, const Belief& belief);
   void canonicalize(Belief& belief);
   void summarize(const Belief& belief);
   std::uint32_t store(std::span<const std::uint64_t> words);

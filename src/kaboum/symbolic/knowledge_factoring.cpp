@@ -1,5 +1,6 @@
 #include "kaboum/symbolic/knowledge_factoring.hpp"
 
+#include <algorithm>
 #include <numeric>
 
 #include "kaboum/core/error.hpp"
@@ -21,16 +22,26 @@ struct DisjointSets {
   }
 };
 
+// Condition checkers stay: without fluents they read nothing but their arguments, so they answer
+// the same in every world.
 bool hasTests(const Condition& c) {
-  return !c.fluentTests.empty() || !c.numericTests.empty() || !c.moduleChecks.empty();
+  return !c.fluentTests.empty() || !c.numericTests.empty();
+}
+
+bool callsEffectApplicators(const Operator& op) {
+  return !op.effect.moduleCalls.empty() ||
+         std::any_of(op.conditional.begin(), op.conditional.end(),
+                     [](const ConditionalEffect& c) { return !c.effect.moduleCalls.empty(); });
 }
 
 std::string inexactReason(const GroundTask& task) {
   if (!task.fluentNames.empty()) return "the task has fluents, whose values differ per world";
-  if (!task.moduleCalls.empty()) return "the task calls semantic attachments";
-  if (task.goal.size() > 1) return "the goal is disjunctive";
-  if (task.goal.size() == 1 && hasTests(task.goal[0])) return "the goal has numeric tests";
+  if (hasTests(task.goal.conjunction)) return "the goal has numeric tests";
+  for (const std::vector<Condition>& clause : task.goal.clauses) {
+    if (std::any_of(clause.begin(), clause.end(), hasTests)) return "the goal has numeric tests";
+  }
   for (const Operator& op : task.operators) {
+    if (callsEffectApplicators(op)) return "action (" + op.name + ") calls effect applicators";
     if (hasTests(op.precondition)) return "action (" + op.name + ") has numeric tests";
     for (const ConditionalEffect& effect : op.conditional) {
       for (const Condition& c : effect.disjuncts) {
@@ -103,12 +114,30 @@ KnowledgeFactoring factorKnowledge(const GroundTask& task,
       }
     }
   }
+  // A goal clause holds in every world when it holds in every world of the one component it reads
+  // (with the known core), so it joins the components of its uncertain atoms.
+  for (const std::vector<Condition>& clause : task.goal.clauses) {
+    AtomId reader = -1;
+    for (const Condition& c : clause) {
+      for (const std::vector<AtomId>* list : {&c.positive, &c.negative}) {
+        for (const AtomId a : *list) {
+          if (!uncertain[a]) continue;
+          if (reader >= 0) sets.join(a, reader);
+          reader = a;
+        }
+      }
+    }
+    out.clauseComponent.push_back(reader);  // an atom for now, its component below
+  }
   std::vector<int> index(atoms, -1);
   for (std::size_t a = 0; a < atoms; ++a) {
     if (!uncertain[a]) continue;
     int& component = index[sets.find(static_cast<int>(a))];
     if (component < 0) component = out.components++;
     out.componentOf[a] = component;
+  }
+  for (int& reader : out.clauseComponent) {
+    if (reader >= 0) reader = out.componentOf[reader];
   }
   return out;
 }

@@ -25,6 +25,7 @@ struct KnowledgeFactoring {
   // Per atom: its component, or -1 for an atom known in every reachable knowledge state.
   std::vector<int> componentOf;
   int components = 0;
+  std::vector<int> clauseComponent;  // per goal clause: the component it reads, or -1 (none)
   std::string inexact;  // why a factored representation would not be exact; "" if it is
 };
 
@@ -32,7 +33,11 @@ struct KnowledgeFactoring {
 // one `unknown` atom) and the subjects of forgetting (`forgetBase`, per atom: the atom a
 // del(Kf)/nondet marker makes unknown, -1 otherwise). A conditional effect whose condition reads an
 // uncertain atom makes its effect atoms uncertain and joins them to that atom's component, up to a
-// fixpoint. Fluents, attachments, numeric tests and disjunctive goals make factoring inexact.
+// fixpoint; a goal clause joins the components it reads, so that it is checked in one component's
+// local worlds. Fluents, effect applicators and numeric tests make factoring inexact; condition
+// checkers do not (without fluents they read only their arguments, the same in every world).
+// Goals are clauses (task.hpp), never a disjunctive normal form, so the clauses of Bartender's
+// ⊕ goal, one per bottle, keep the bottles apart.
 KnowledgeFactoring factorKnowledge(const GroundTask& task,
                                    std::span<const std::vector<AtomId>> correlated,
                                    std::span<const AtomId> forgetBase);

@@ -38,14 +38,26 @@ RelaxedTask::RelaxedTask(const GroundTask& task)
       }
     }
   }
-  for (const Condition& disjunct : task.goal) {
-    if (!appendPreconditions({&disjunct})) continue;
-    if (task.goal.size() == 1) {
-      goalFacts_.assign(pre_.begin() + preStart_.back(), pre_.end());
+  // Each condition of a goal clause reaches the clause's fact; the conjunction and every clause
+  // fact reach the goal fact.
+  const int firstClauseFact = goalFact_ + 1 + static_cast<int>(undeletable_.size());
+  std::vector<int> clauseFacts;
+  if (task.goal.reachable) {
+    for (const std::vector<Condition>& clause : task.goal.clauses) {
+      clauseFacts.push_back(firstClauseFact + static_cast<int>(clauseFacts.size()));
+      for (const Condition& disjunct : clause) {
+        if (!appendPreconditions({&disjunct})) continue;
+        effects_.push_back(clauseFacts.back());
+        finishUnary(-1);
+      }
     }
-    effects_.push_back(goalFact_);
-    finishUnary(-1);
+    if (appendPreconditions({&task.goal.conjunction}, clauseFacts)) {
+      if (task.goal.conjunctive()) goalFacts_.assign(pre_.begin() + preStart_.back(), pre_.end());
+      effects_.push_back(goalFact_);
+      finishUnary(-1);
+    }
   }
+  clauseFactCount_ = static_cast<int>(clauseFacts.size());
   const auto facts = static_cast<std::size_t>(factCount());
   consumerStart_.assign(facts + 1, 0);
   for (const int fact : pre_) ++consumerStart_[static_cast<std::size_t>(fact) + 1];
@@ -124,11 +136,13 @@ void RelaxedTask::addUnary(int op, std::initializer_list<const Condition*> condi
   finishUnary(op);
 }
 
-// Appends the sorted, distinct precondition facts of `conditions`; false (and nothing appended)
-// if one of them can never hold.
-bool RelaxedTask::appendPreconditions(std::initializer_list<const Condition*> conditions) {
+// Appends the sorted, distinct precondition facts of `conditions` and `facts`; false (and nothing
+// appended) if one of them can never hold.
+bool RelaxedTask::appendPreconditions(std::initializer_list<const Condition*> conditions,
+                                      std::span<const int> facts) {
   const std::size_t firstPre = pre_.size();
   for (const Condition* condition : conditions) pushConditionFacts(*condition);
+  pre_.insert(pre_.end(), facts.begin(), facts.end());
   const auto first = pre_.begin() + static_cast<long>(firstPre);
   if (std::find(first, pre_.end(), kUnreachable) != pre_.end()) {
     pre_.resize(firstPre);

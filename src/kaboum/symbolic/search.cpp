@@ -101,7 +101,7 @@ class Search {
       evaluator_.initialState(scratch_);
       const StateId initial = insert().first;
       parent_[initial] = kNoState;
-      if (task_.goal.empty()) {
+      if (!task_.goal.reachable) {
         result_.status = PlannerStatus::Unsolvable;
       } else if (evaluator_.isGoal(view(initial))) {
         solved(initial);

@@ -30,7 +30,10 @@ StateEvaluator::StateEvaluator(const GroundTask& task, AttachmentRuntime& attach
       measureEffect(c.effect);
     }
   }
-  for (const Condition& c : task.goal) measureCondition(c);
+  measureCondition(task.goal.conjunction);
+  for (const std::vector<Condition>& clause : task.goal.clauses) {
+    for (const Condition& c : clause) measureCondition(c);
+  }
   stack_.resize(deepest);
 }
 
@@ -98,6 +101,13 @@ bool StateEvaluator::holds(const Condition& condition, StateView state) {
 bool StateEvaluator::holdsAny(const std::vector<Condition>& disjuncts, StateView state) {
   return std::any_of(disjuncts.begin(), disjuncts.end(),
                      [&](const Condition& c) { return holds(c, state); });
+}
+
+bool StateEvaluator::isGoal(StateView state) {
+  const Goal& goal = task_.goal;
+  return goal.reachable && holds(goal.conjunction, state) &&
+         std::all_of(goal.clauses.begin(), goal.clauses.end(),
+                     [&](const std::vector<Condition>& clause) { return holdsAny(clause, state); });
 }
 
 // Evaluates the assignments and module effects of `effect` on the old state into pendingWrites_.

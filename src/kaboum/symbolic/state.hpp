@@ -72,7 +72,7 @@ class StateEvaluator {
 
   bool holds(const Condition& condition, StateView state);
   bool holdsAny(const std::vector<Condition>& disjuncts, StateView state);
-  bool isGoal(StateView state) { return holdsAny(task_.goal, state); }
+  bool isGoal(StateView state);
   // Writes the successor of `state` under `op` (whose precondition holds) into `out`. Returns
   // false if an effect applicator reports the effect infeasible. Without `effectApplicators`,
   // none is called and the fluents they write keep their values (a preview of the successor).

@@ -97,6 +97,17 @@ struct Operator {
   std::vector<ConditionalEffect> conditional;
 };
 
+// The goal formula in conjunctive form (thesis §3.1): `conjunction` and, for each clause, one of
+// its conditions. A clause is the disjunctive normal form of one conjunct of the goal that keeps a
+// disjunction, so a goal ∧_i (φ_i ∨ ψ_i) over n objects is n clauses of two conditions instead of a
+// normal form of 2^n disjuncts, and each clause reads only its object's atoms.
+struct Goal {
+  bool reachable = true;  // false: statically false, no state satisfies it
+  Condition conjunction;
+  std::vector<std::vector<Condition>> clauses;  // each of at least two conditions
+  bool conjunctive() const { return reachable && clauses.empty(); }
+};
+
 struct GroundingStatistics {
   std::size_t reachableAtoms = 0;
   std::size_t operators = 0;
@@ -110,7 +121,7 @@ struct GroundTask {
   std::vector<AtomId> initialAtoms;
   std::vector<double> initialFluents;
   std::vector<Operator> operators;
-  std::vector<Condition> goal;  // the goal holds if any disjunct holds; empty: unsolvable
+  Goal goal;
   std::vector<GroundModuleCall> moduleCalls;
   std::vector<std::string> objectNames;
 
@@ -125,9 +136,10 @@ struct GroundTask {
 
 // Grounds with relaxed-reachability pruning (only operators whose preconditions can hold in the
 // delete relaxation are produced). Throws InputError when a formula's disjunctive normal form
-// exceeds `maxDisjuncts`. `varyingPredicates` are kept as atoms even if no action changes them
-// (their initial value may be unknown, as in contingent problems), instead of being folded, and
-// each of their reachable atoms gets an id even if no condition or effect mentions it.
+// (for the goal: one clause's) exceeds `maxDisjuncts`. `varyingPredicates` are kept as atoms even
+// if no action changes them (their initial value may be unknown, as in contingent problems),
+// instead of being folded, and each of their reachable atoms gets an id even if no condition or
+// effect mentions it.
 GroundTask ground(const Domain& domain, const Problem& problem, std::size_t maxDisjuncts = 4096,
                   std::span<const int> varyingPredicates = {});
 
