@@ -1,7 +1,6 @@
 #include "kaboum/tamp/assembly_attachments.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <numbers>
 
 #include "kaboum/kinematics/random_configuration.hpp"
@@ -140,25 +139,18 @@ std::string AssemblyAttachments::tryInsertion(const GeometricState& state, const
       robot.held[heldIndex(state, inserter.robot, part)].inLink.inverse() * kinematics.tcp();
   const double turn = 2 * std::numbers::pi * uniformUnit(rng);
   const Pose seated = alongAxis(basePose, fit.seatHeight, fit.flipped, turn);
-  const auto ikStart = std::chrono::steady_clock::now();
-  const std::vector<std::vector<double>> starts = kinematics.solutions(
-      alongAxis(basePose, fit.seatHeight + fit.approach, fit.flipped, turn) * tcpInPart,
-      robot.configuration);
-  ++geometry.statistics_.ikCalls;
-  geometry.statistics_.ikSeconds +=
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - ikStart).count();
-  if (starts.empty()) return "no IK solution at the start of the insertion";
-  const motion::MotionGroup group(world, state, {inserter.robot});
-  const auto free = std::find_if(starts.begin(), starts.end(), [&](const std::vector<double>& q) {
-    return !motion::configurationProblem(group, q, 0);
-  });
-  if (free == starts.end()) {
-    return "start of the insertion: " + *motion::configurationProblem(group, starts.front(), 0);
+  std::vector<double> start;
+  if (std::string reason = geometry.freeSolution(
+          state, inserter,
+          alongAxis(basePose, fit.seatHeight + fit.approach, fit.flipped, turn) * tcpInPart,
+          "at the start of the insertion", start);
+      !reason.empty()) {
+    return reason;
   }
   // The insertion and the retreat first: they fail more often and cost less than the transfer.
   const std::uint64_t transferSeed = rng();
   GeometricState atSeat = state;
-  atSeat.robots[inserter.robot].configuration = *free;
+  atSeat.robots[inserter.robot].configuration = start;
   // The contacts an assembly needs, between the parts moved and the parts they go into, allowed
   // and no other: each line is certified twice, once without either set of parts.
   const std::vector<std::size_t> carried = robot.heldObjects;
@@ -216,7 +208,7 @@ std::string AssemblyAttachments::tryInsertion(const GeometricState& state, const
     return "retreat: " + retreat.message;
   }
   geometry.options_.motion.seed = transferSeed;
-  motion::MotionResult transfer = geometry.plan(state, inserter, *free);
+  motion::MotionResult transfer = geometry.plan(state, inserter, start);
   if (transfer.status != PlannerStatus::Solved) return "transfer: " + transfer.message;
   reached = std::move(atSeat);
   reached.robots[inserter.robot].configuration = retreat.path.back();
@@ -274,7 +266,6 @@ bool AssemblyAttachments::assemblePipeBearing(const AttachmentArgs& args,
   if (!holds(state, holder->robot, *pipe) || !holds(state, inserter->robot, *bearing)) {
     return geometry.fail(name, args, "each arm must hold its part");
   }
-  const World& world = *geometry.world_;
   return geometry.firstSample(
       name, args, state, geometry.options_.handoverSamples, writes,
       [&](std::mt19937_64& rng, std::vector<GeometricStep>& steps, GeometricState& reached) {
@@ -284,19 +275,15 @@ bool AssemblyAttachments::assemblePipeBearing(const AttachmentArgs& args,
             holding.held[heldIndex(state, holder->robot, *pipe)].inLink.inverse() *
             kinematics.tcp();
         const Pose meeting = meetingPose(state, *holder, *inserter, *pipe, rng);
-        const std::vector<std::vector<double>> solutions =
-            kinematics.solutions(meeting * tcpInPipe, holding.configuration);
-        ++geometry.statistics_.ikCalls;
-        const motion::MotionGroup group(world, state, {holder->robot});
-        const auto free = std::find_if(solutions.begin(), solutions.end(), [&](const auto& q) {
-          return !motion::configurationProblem(group, q, 0);
-        });
-        if (solutions.empty()) return std::string("no IK solution of the holder at the meeting");
-        if (free == solutions.end()) {
-          return "holder at the meeting: " + *motion::configurationProblem(group, solutions[0], 0);
+        std::vector<double> holderAtMeeting;
+        if (std::string reason =
+                geometry.freeSolution(state, *holder, meeting * tcpInPipe,
+                                      "at the holder's meeting pose", holderAtMeeting);
+            !reason.empty()) {
+          return reason;
         }
         GeometricState atMeeting = state;
-        atMeeting.robots[holder->robot].configuration = *free;
+        atMeeting.robots[holder->robot].configuration = holderAtMeeting;
         std::vector<GeometricStep> insertion;
         if (std::string reason = tryInsertion(atMeeting, *inserter, *bearing, *pipe, meeting,
                                               fits_.bearingInPipe, rng, insertion, reached);
@@ -304,7 +291,7 @@ bool AssemblyAttachments::assemblePipeBearing(const AttachmentArgs& args,
           return reason;
         }
         geometry.options_.motion.seed = rng();
-        motion::MotionResult transfer = geometry.plan(state, *holder, *free);
+        motion::MotionResult transfer = geometry.plan(state, *holder, holderAtMeeting);
         if (transfer.status != PlannerStatus::Solved) {
           return "holder's transfer: " + transfer.message;
         }

@@ -386,6 +386,26 @@ int GeometricAttachments::toolLink(const Arm& arm) const {
       .value();
 }
 
+std::string GeometricAttachments::freeSolution(const GeometricState& state, const Arm& arm,
+                                               const Pose& tcpPose, std::string_view where,
+                                               std::vector<double>& solution) {
+  const Stopwatch ik;
+  const std::vector<std::vector<double>> solutions =
+      tool(arm).solutions(tcpPose, state.robots[arm.robot].configuration);
+  ++statistics_.ikCalls;
+  statistics_.ikSeconds += ik.seconds();
+  if (solutions.empty()) return "no IK solution " + std::string(where);
+  const motion::MotionGroup group(*world_, state, {arm.robot});
+  const auto free = std::find_if(solutions.begin(), solutions.end(), [&](const auto& q) {
+    return !motion::configurationProblem(group, q, 0);
+  });
+  if (free == solutions.end()) {
+    return std::string(where) + ": " + *motion::configurationProblem(group, solutions.front(), 0);
+  }
+  solution = *free;
+  return {};
+}
+
 std::string GeometricAttachments::approachableGrasp(const GeometricState& state, const Arm& arm,
                                                     std::size_t object, const Pose& objectPose,
                                                     std::mt19937_64& rng,
@@ -541,24 +561,18 @@ std::string GeometricAttachments::tryPlacement(const GeometricState& state, cons
   const FreeSpace found = placements_.freeSpaceFound(state, object, location, options, scratch_);
   if (!found.pose) return std::string(kNoFreePlacement);
   const Pose tcpAtPlace = *found.pose * tcpInObject;
-  const Stopwatch ik;
-  std::vector<std::vector<double>> above = kinematics.solutions(
-      translated(Vec3(0, 0, options_.liftHeight), tcpAtPlace), robot.configuration);
-  ++statistics_.ikCalls;
-  statistics_.ikSeconds += ik.seconds();
-  if (above.empty()) return "no IK solution above the placement";
-  const motion::MotionGroup group(*world_, state, {arm.robot});
-  const auto free = std::find_if(above.begin(), above.end(), [&](const std::vector<double>& q) {
-    return !motion::configurationProblem(group, q, 0);
-  });
-  if (free == above.end()) {
-    return "above the placement: " + *motion::configurationProblem(group, above.front(), 0);
+  std::vector<double> above;
+  if (std::string reason =
+          freeSolution(state, arm, translated(Vec3(0, 0, options_.liftHeight), tcpAtPlace),
+                       "above the placement", above);
+      !reason.empty()) {
+    return reason;
   }
   // The descent, the release and the retreat start where the transfer ends: checked first, since
   // they fail more often and cost less.
   const std::uint64_t transferSeed = rng();
   GeometricState atPlace = state;
-  atPlace.robots[arm.robot].configuration = *free;
+  atPlace.robots[arm.robot].configuration = above;
   motion::MotionResult descent = line(atPlace, arm, tcpAtPlace);
   if (descent.status != PlannerStatus::Solved) return "descent: " + descent.message;
   atPlace.robots[arm.robot].configuration = descent.path.back();
@@ -568,7 +582,7 @@ std::string GeometricAttachments::tryPlacement(const GeometricState& state, cons
                                           Eigen::Translation3d(0, 0, -options_.approachDistance));
   if (retreat.status != PlannerStatus::Solved) return "retreat: " + retreat.message;
   options_.motion.seed = transferSeed;
-  motion::MotionResult transfer = plan(state, arm, *free);
+  motion::MotionResult transfer = plan(state, arm, above);
   if (transfer.status != PlannerStatus::Solved) return "transfer: " + transfer.message;
   reached = std::move(atPlace);
   reached.robots[arm.robot].configuration = retreat.path.back();
@@ -638,29 +652,21 @@ std::string GeometricAttachments::tryHandover(const GeometricState& state, const
   motion::ToolKinematics& giving = tool(giver);
   const Pose tcpInObject = holder.held[index].inLink.inverse() * giving.tcp();
   const Pose meeting = handoverPose(state, giver, receiver, object, rng);
-  const Stopwatch ik;
-  const std::vector<std::vector<double>> solutions =
-      giving.solutions(meeting * tcpInObject, holder.configuration);
-  ++statistics_.ikCalls;
-  statistics_.ikSeconds += ik.seconds();
-  if (solutions.empty()) return "no IK solution of the giver at the handover pose";
-  const motion::MotionGroup giverGroup(*world_, state, {giver.robot});
-  const auto free = std::find_if(solutions.begin(), solutions.end(), [&](const auto& q) {
-    return !motion::configurationProblem(giverGroup, q, 0);
-  });
-  if (free == solutions.end()) {
-    return "giver at the handover pose: " +
-           *motion::configurationProblem(giverGroup, solutions.front(), 0);
+  std::vector<double> giverAtMeeting;
+  if (std::string reason = freeSolution(state, giver, meeting * tcpInObject,
+                                        "at the giver's handover pose", giverAtMeeting);
+      !reason.empty()) {
+    return reason;
   }
   GeometricState atMeeting = state;
-  atMeeting.robots[giver.robot].configuration = *free;
+  atMeeting.robots[giver.robot].configuration = giverAtMeeting;
   ApproachableGrasp grasp;
   if (std::string reason = approachableGrasp(atMeeting, receiver, object, meeting, rng, grasp);
       !reason.empty()) {
     return "receiver: " + reason;
   }
   options_.motion.seed = rng();
-  motion::MotionResult transfer = plan(state, giver, *free);
+  motion::MotionResult transfer = plan(state, giver, giverAtMeeting);
   if (transfer.status != PlannerStatus::Solved) return "giver's transfer: " + transfer.message;
   options_.motion.seed = rng();
   motion::MotionResult transit = plan(atMeeting, receiver, grasp.preGrasp);
@@ -679,7 +685,7 @@ std::string GeometricAttachments::tryHandover(const GeometricState& state, const
   options_.motion.seed = rng();
   motion::MotionResult retreat =
       line(atGrasp, giver,
-           giving.tcpPose(*free) * Eigen::Translation3d(0, 0, -options_.approachDistance));
+           giving.tcpPose(giverAtMeeting) * Eigen::Translation3d(0, 0, -options_.approachDistance));
   if (retreat.status != PlannerStatus::Solved) return "giver's retreat: " + retreat.message;
   reached = std::move(atGrasp);
   reached.robots[giver.robot].configuration = retreat.path.back();

@@ -15,6 +15,7 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 #include <vector>
 
@@ -183,6 +184,12 @@ class GeometricAttachments {
   void record(const motion::MotionResult& result);
   // The link a tool is on.
   [[nodiscard]] int toolLink(const Arm& arm) const;
+  // The first IK solution of the arm with its tool centre point at `tcpPose` (nearest its
+  // configuration in `state` first) at which it collides with nothing in `state`, counted in the
+  // statistics: on success an empty string and `solution`, else "no IK solution <where>" or
+  // "<where>: <the first solution's collision>".
+  std::string freeSolution(const GeometricState& state, const Arm& arm, const Pose& tcpPose,
+                           std::string_view where, std::vector<double>& solution);
   // A grasp the arm can approach: its configuration at the pre-grasp and the tool pose at the
   // grasp.
   struct ApproachableGrasp {
