@@ -1,0 +1,87 @@
+"""kaboum.solve from Python: the plan tree, its certified paths as numpy arrays, the statistics
+and the plan file, on the pick-and-place example."""
+import json
+
+import numpy as np
+import pytest
+
+import kaboum
+from conftest import example
+
+
+@pytest.fixture(scope="module")
+def solution(pick_and_place):
+    return kaboum.solve(pick_and_place, example("pick-and-place/domain.pddl"),
+                        example("pick-and-place/problem.pddl"))
+
+
+def test_the_plan_picks_then_places_and_passes_its_checks(solution):
+    assert solution.solved, solution.message
+    assert solution.status == "solved"
+    pick = solution.nodes[solution.root]
+    place = solution.nodes[pick.next]
+    assert (pick.kind, pick.text) == ("action", "(pickup kr5 block left)")
+    assert (place.kind, place.text) == ("action", "(putdown kr5 block right)")
+    assert solution.nodes[place.next].kind == "goal"
+    assert pick.on_false == -1
+    assert "(pickup kr5 block left)" in solution.plan_text()
+
+
+def test_every_motion_is_a_waypoint_array_that_continues_the_last(solution, pick_and_place):
+    configuration = pick_and_place.initial_state().configuration("kr5")
+    motions = 0
+    node = solution.nodes[solution.root]
+    while node.kind == "action":
+        for action in node.geometry:
+            assert action.procedure in ("pickUp", "putDown")
+            for step in action.steps:
+                if step.kind in ("grasp", "release"):
+                    assert step.object == "block"
+                    assert step.path.shape == (0, len(configuration))
+                    continue
+                assert step.robot == "kr5"
+                assert step.path.dtype == np.float64
+                assert step.path.shape[1] == len(configuration)
+                np.testing.assert_allclose(step.path[0], configuration, atol=1e-9)
+                configuration = step.path[-1]
+                motions += 1
+        node = solution.nodes[node.next]
+    assert motions == 6
+
+
+def test_states_of_the_plan_hold_the_block_between_pick_and_place(solution):
+    pick = solution.nodes[solution.root].geometry[0]
+    assert solution.state(pick.from_state).holder("block") is None
+    held = solution.state(pick.to_state)
+    assert held.holder("block") == "kr5"
+    assert held.held("kr5") == ["block"]
+    with pytest.raises(IndexError):
+        solution.state(10**9)
+
+
+def test_statistics_and_plan_file_are_the_cli_s(solution, tmp_path):
+    statistics = solution.statistics
+    assert statistics["geometry"] == "bounded"
+    assert statistics["total_seconds"] > 0
+    assert statistics["plan_actions"] == 2
+    plan = solution.plan_file()
+    assert plan["format"] == "kaboum-plan"
+    assert plan["verification"]["passed"]
+    path = tmp_path / "plan.json"
+    solution.write_plan(str(path))
+    assert json.loads(path.read_text())["nodes"] == plan["nodes"]
+
+
+def test_the_same_seed_gives_the_same_paths(pick_and_place, solution):
+    again = kaboum.solve(pick_and_place, example("pick-and-place/domain.pddl"),
+                         example("pick-and-place/problem.pddl"))
+    first = solution.nodes[solution.root].geometry[0].steps[0].path
+    np.testing.assert_array_equal(again.nodes[again.root].geometry[0].steps[0].path, first)
+
+
+def test_a_time_limit_reached_is_a_status_not_an_exception(pick_and_place):
+    result = kaboum.solve(pick_and_place, example("pick-and-place/domain.pddl"),
+                          example("pick-and-place/problem.pddl"), node_limit=1, integrated=True)
+    assert not result.solved
+    assert result.status == "node-limit"
+    assert result.root == -1
