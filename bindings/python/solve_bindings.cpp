@@ -13,6 +13,7 @@
 #include "bindings.hpp"
 #include "cancellable.hpp"
 #include "kaboum/core/error.hpp"
+#include "kaboum/exec/executor.hpp"
 #include "kaboum/symbolic/contingent_parser.hpp"
 #include "kaboum/symbolic/heuristic.hpp"
 #include "kaboum/tamp/plan_file.hpp"
@@ -185,6 +186,46 @@ nlohmann::json planFile(Solution& self) {
   return tamp::planFileJson(*self.solver, self.result, self.sources);
 }
 
+// A run through the plan (thesis §6.1.3): the actions timed as quintic trajectories on one clock.
+struct Execution {
+  std::shared_ptr<SceneWorld> scene;
+  exec::ExecutionResult result;
+};
+
+// Walks the plan from its root as `kaboum execute` does, each sensing outcome from `sensing`
+// (called with the branch's test, "(isemptybottle o1)", returning its truth).
+Execution execute(Solution& self, const std::optional<py::function>& sensing,
+                  const std::string& profile) {
+  if (self.result.status != PlannerStatus::Solved) {
+    throw std::invalid_argument("execute: the solve found no plan (" +
+                                toString(self.result.status) + ")");
+  }
+  exec::ExecutionOptions options;
+  options.trajectory.profile = exec::profileNamed(profile);
+  if (sensing) {
+    options.sensing = [&sensing](const exec::SensingQuery& query) {
+      return static_cast<bool>(py::bool_((*sensing)(query.test)));
+    };
+  }
+  const tamp::PlanFileContents plan{self.result.plan, self.result.geometry};
+  return {self.scene, exec::execute(self.scene->world(), self.solver->task(), plan, options)};
+}
+
+// Robot `robot`'s trajectory sampled at `rate` Hz: times, and positions, velocities and
+// accelerations (samples × joints).
+py::tuple trajectory(const Execution& self, const std::string& robot, double rate) {
+  requirePositive("rate", rate);
+  const exec::RobotSamples samples =
+      exec::sampleRobot(self.result.schedule, self.scene->robot(robot), rate);
+  const auto table = [&](const std::vector<double>& values) {
+    py::array_t<double> array({samples.times.size(), samples.dof});
+    std::copy(values.begin(), values.end(), array.mutable_data());
+    return array;
+  };
+  return py::make_tuple(vectorArray(samples.times), table(samples.positions),
+                        table(samples.velocities), table(samples.accelerations));
+}
+
 }  // namespace
 
 void bindSolve(py::module_& module) {
@@ -308,7 +349,44 @@ void bindSolve(py::module_& module) {
             }
           },
           py::arg("path"),
-          "Writes the plan file that `kaboum verify-plan` and `kaboum execute` read.");
+          "Writes the plan file that `kaboum verify-plan` and `kaboum execute` read.")
+      .def("execute", &execute, py::arg("sensing") = py::none(), py::kw_only(),
+           py::arg("profile") = "rest-to-rest",
+           "Runs the plan from its root as `kaboum execute` does: `sensing(test)` gives each "
+           "branch's outcome ('(isemptybottle o1)' -> bool); `profile` 'rest-to-rest' or "
+           "'blended'. Raises InputError when a branch is met without `sensing`.");
+
+  py::class_<Execution>(module, "Execution",
+                        "A run through the plan: every action's paths timed as quintic "
+                        "trajectories within the joint limits on one clock (docs/execution.md).")
+      .def_property_readonly("reached_goal",
+                             [](const Execution& self) { return self.result.reachedGoal; })
+      .def_property_readonly(
+          "duration", [](const Execution& self) { return self.result.schedule.duration(); },
+          "Seconds from the first action's start to the last one's end.")
+      .def_property_readonly(
+          "actions",
+          [](const Execution& self) {
+            std::vector<py::tuple> actions;
+            for (const exec::TimedAction& action : self.result.schedule.actions()) {
+              actions.push_back(py::make_tuple(action.name, action.start, action.end));
+            }
+            return actions;
+          },
+          "(name, start, end) of every action run, in order.")
+      .def_property_readonly(
+          "sensed",
+          [](const Execution& self) {
+            std::vector<py::tuple> outcomes;
+            for (const exec::SensingOutcome& outcome : self.result.sensed) {
+              outcomes.push_back(py::make_tuple(outcome.test, outcome.value, outcome.time));
+            }
+            return outcomes;
+          },
+          "(test, outcome, time) of every sensing branch met.")
+      .def("trajectory", &trajectory, py::arg("robot"), py::arg("rate") = 1000.0,
+           "The robot's trajectory sampled at `rate` Hz: (times, positions, velocities, "
+           "accelerations), the last three samples x joints.");
 
   module.def("solve", &solve, py::arg("world"), py::arg("domain"), py::arg("problem"),
              py::kw_only(), py::arg("search") = "gbfs", py::arg("heuristic") = "ff",

@@ -85,3 +85,33 @@ def test_a_time_limit_reached_is_a_status_not_an_exception(pick_and_place):
     assert not result.solved
     assert result.status == "node-limit"
     assert result.root == -1
+
+
+def test_execution_times_the_paths_as_trajectories(solution, pick_and_place):
+    run = solution.execute()
+    assert run.reached_goal
+    names = [name for name, start, end in run.actions]
+    assert names == ["(pickup kr5 block left)", "(putdown kr5 block right)"]
+    times, positions, velocities, accelerations = run.trajectory("kr5", rate=100)
+    assert times[0] == 0 and times[-1] == pytest.approx(run.duration)
+    assert positions.shape == velocities.shape == accelerations.shape == (len(times), 6)
+    np.testing.assert_allclose(positions[0], pick_and_place.initial_state().configuration("kr5"))
+    np.testing.assert_allclose(velocities[0], 0, atol=1e-12)  # rest to rest
+    last = solution.nodes[solution.nodes[solution.root].next].geometry[0].steps[-1].path[-1]
+    np.testing.assert_allclose(positions[-1], last, atol=1e-9)
+
+
+def test_a_sensing_callback_chooses_the_branch_executed():
+    from conftest import world
+    bartender = world("bartender/scene.yaml")
+    solution = kaboum.solve(bartender, example("bartender/domain.pddl"),
+                            example("bartender/problem-1.pddl"), search="astar")
+    assert solution.solved, solution.message
+    assert any(node.kind == "branch" for node in solution.nodes)
+    empty = solution.execute(lambda test: True)
+    full = solution.execute(lambda test: False)
+    assert empty.sensed[0][:2] == ("(isemptybottle o1)", True)
+    assert full.sensed[0][:2] == ("(isemptybottle o1)", False)
+    assert len(empty.actions) > len(full.actions)
+    with pytest.raises(kaboum.InputError, match="no sensing source"):
+        solution.execute()
