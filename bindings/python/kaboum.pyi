@@ -51,6 +51,26 @@ class World:
         time_limit: float = 10.0,
         seed: int = 1,
     ) -> MotionPlan: ...
+    def swept_collision(self, state: State, robot: str, path: npt.ArrayLike) -> Optional[str]: ...
+    def verify_path(
+        self,
+        state: State,
+        robot: str,
+        path: npt.ArrayLike,
+        *,
+        joint_step: float = 0.5,
+        tool_step: float = 1.0,
+    ) -> PathCheck: ...
+
+class PathCheck:
+    @property
+    def collision_free(self) -> bool: ...
+    @property
+    def samples(self) -> int: ...
+    @property
+    def clearance(self) -> Optional[float]: ...
+    @property
+    def first_collision(self) -> str: ...
 
 class State:
     @property

@@ -64,6 +64,11 @@ motion::ToolKinematics& SceneWorld::kinematics(std::size_t robot, std::size_t to
   return *kinematics;
 }
 
+const verify::ReferenceGeometry& SceneWorld::reference() {
+  if (!reference_) reference_ = std::make_unique<verify::ReferenceGeometry>(world_);
+  return *reference_;
+}
+
 py::array_t<double> poseArray(const Pose& pose) {
   py::array_t<double> matrix({4, 4});
   auto out = matrix.mutable_unchecked<2>();

@@ -15,6 +15,7 @@
 #include "kaboum/motion/motion_planner.hpp"
 #include "kaboum/motion/tool_kinematics.hpp"
 #include "kaboum/verify/exact_predicates.hpp"
+#include "kaboum/verify/reference_geometry.hpp"
 #include "kaboum/world/world.hpp"
 #include "scene_cli.hpp"
 
@@ -44,6 +45,8 @@ class SceneWorld {
 
   // The kinematics of a robot's tool, made on first use (under the GIL: not thread-safe).
   motion::ToolKinematics& kinematics(std::size_t robot, std::size_t tool);
+  // The original meshes of the independent verifier, read on first use (under the GIL).
+  const verify::ReferenceGeometry& reference();
 
  private:
   [[nodiscard]] std::size_t entity(const std::string& name, world::NamedEntity::Kind kind,
@@ -53,6 +56,7 @@ class SceneWorld {
   std::string geometry_;
   world::World world_;
   std::unique_ptr<verify::ExactPredicates> exact_;
+  std::unique_ptr<verify::ReferenceGeometry> reference_;
   std::map<std::pair<std::size_t, std::size_t>, std::unique_ptr<motion::ToolKinematics>> tools_;
 };
 

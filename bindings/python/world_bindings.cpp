@@ -8,6 +8,7 @@
 #include "kaboum/core/error.hpp"
 #include "kaboum/motion/motion_group.hpp"
 #include "kaboum/tamp/geometric_attachments.hpp"
+#include "kaboum/tamp/solver.hpp"
 #include "scene_world.hpp"
 
 namespace kaboum::python {
@@ -79,6 +80,57 @@ MotionPlan planMotion(const SceneWorld& self, const SceneState& state, const std
   return {toString(result.status), result.message,
           waypointsArray(result.path, state.state.robots[index].configuration.size()),
           result.statistics.sweepEpsilon, result.statistics.totalSeconds};
+}
+
+// Why the swept volumes of `path`'s segments (robot `robot` moving in `state`) are not certified
+// free, as the motion planner certifies them (thesis §4.5), or nullopt when they all are.
+std::optional<std::string> sweptCollision(const SceneWorld& self, const SceneState& state,
+                                          const std::string& robot, const Array& path) {
+  const motion::Waypoints waypoints = waypointsFromArray(path);
+  if (waypoints.empty()) throw std::invalid_argument("a path has at least one waypoint");
+  py::gil_scoped_release unlocked;
+  const motion::MotionGroup group(self.world(), state.state, {self.robot(robot)});
+  const motion::QueryEpsilon epsilon =
+      motion::sweepEpsilonForEnds(group, waypoints.front(), waypoints.back(), {});
+  if (epsilon.status != PlannerStatus::Solved) return epsilon.problem;
+  const std::unique_ptr<motion::MotionValidator> validator =
+      motion::motionValidator(group, epsilon.epsilon, nullptr);
+  for (std::size_t i = 0; i + 1 < waypoints.size(); ++i) {
+    if (!validator->isValid(waypoints[i], waypoints[i + 1])) {
+      return fmt::format("segment {} (waypoints {} to {}) is not certified free", i, i, i + 1);
+    }
+  }
+  return std::nullopt;
+}
+
+// The independent check of a motion (verify::verifyPath, docs/verify.md), as Python receives it.
+struct PathCheck {
+  bool collisionFree = true;
+  std::size_t samples = 0;
+  std::optional<double> clearance;
+  std::string firstCollision;
+};
+
+PathCheck verifyMotion(SceneWorld& self, const SceneState& state, const std::string& robot,
+                       const Array& path, double jointStepDegrees, double toolStepMillimetres) {
+  tamp::ActionGeometry motion;
+  motion.procedure = "path";
+  tamp::GeometricStep step;
+  step.robot = self.robot(robot);
+  step.path = waypointsFromArray(path);
+  motion.steps.push_back(std::move(step));
+  const verify::VerifyOptions options = cli::verifyOptions({jointStepDegrees, toolStepMillimetres});
+  const verify::ReferenceGeometry& reference = self.reference();
+  tamp::PlanVerification verification;
+  {
+    py::gil_scoped_release unlocked;
+    tamp::verifyActionPaths(reference, 0, motion, {state.state}, options, verification);
+  }
+  const verify::PathVerification& result = verification.checks.front().result;
+  PathCheck check{result.collisionFree(), result.samples, std::nullopt,
+                  verification.firstCollision};
+  if (result.clearance) check.clearance = result.clearance->distance;
+  return check;
 }
 
 }  // namespace
@@ -201,7 +253,23 @@ void bindWorld(py::module_& module) {
            py::arg("seed") = 1,
            "A certified motion of `robot` from its configuration in `state` to `goal` (every "
            "segment's swept volume free of the rest of `state`): the straight segment, else the "
-           "planner's path shortcut. Releases the GIL.");
+           "planner's path shortcut. Releases the GIL.")
+      .def("swept_collision", &sweptCollision, py::arg("state"), py::arg("robot"), py::arg("path"),
+           "Why the swept volumes of the path's segments (the robot moving in `state`, what it "
+           "holds with it) are not certified free at the scene's sweep epsilon, or None when "
+           "they all are. Releases the GIL.")
+      .def("verify_path", &verifyMotion, py::arg("state"), py::arg("robot"), py::arg("path"),
+           py::kw_only(), py::arg("joint_step") = 0.5, py::arg("tool_step") = 1.0,
+           "The independent check of `kaboum verify-path`: the path replayed densely (joints at "
+           "most `joint_step` degrees, link origins and tool points at most `tool_step` mm "
+           "apart) in `state` with FCL on the original meshes. Releases the GIL.");
+
+  py::class_<PathCheck>(module, "PathCheck", "The result of World.verify_path.")
+      .def_readonly("collision_free", &PathCheck::collisionFree)
+      .def_readonly("samples", &PathCheck::samples, "Configurations checked.")
+      .def_readonly("clearance", &PathCheck::clearance,
+                    "Metres: the smallest distance between parties checked, or None.")
+      .def_readonly("first_collision", &PathCheck::firstCollision, "'' when collision free.");
 
   py::class_<SceneState>(module, "State",
                          "A geometric state: every robot's configuration and what it holds, every "

@@ -67,6 +67,16 @@ def test_a_collision_is_named_and_a_certified_motion_avoids_it(pick_and_place):
     assert failed.status == "invalid-goal"
     assert failed.path.shape == (0, 6)
 
+    assert pick_and_place.swept_collision(state, "kr5", motion.path) is None
+    into_block = np.array([state.configuration("kr5"), inside[0]])
+    assert "goal" in pick_and_place.swept_collision(state, "kr5", into_block)
+    check = pick_and_place.verify_path(state, "kr5", motion.path)
+    assert check.collision_free and check.samples > len(motion.path)
+    assert check.clearance > 0
+    hit = pick_and_place.verify_path(state, "kr5", into_block)
+    assert not hit.collision_free
+    assert "collides with" in hit.first_collision
+
 
 def cube(size=1.0):
     vertices = np.array([[x, y, z] for x in (0, size) for y in (0, size) for z in (0, size)],
