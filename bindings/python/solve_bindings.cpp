@@ -17,6 +17,7 @@
 #include "kaboum/symbolic/contingent_parser.hpp"
 #include "kaboum/symbolic/heuristic.hpp"
 #include "kaboum/tamp/plan_file.hpp"
+#include "page_cli.hpp"
 #include "python_attachments.hpp"
 #include "scene_world.hpp"
 
@@ -350,6 +351,21 @@ void bindSolve(py::module_& module) {
           },
           py::arg("path"),
           "Writes the plan file that `kaboum verify-plan` and `kaboum execute` read.")
+      .def(
+          "write_page",
+          [](Solution& self, const std::string& path) {
+            if (self.result.status != PlannerStatus::Solved) {
+              throw std::invalid_argument("write_page: the solve found no plan");
+            }
+            const tamp::PlanFileContents plan{self.result.plan, self.result.geometry};
+            const web::PageSummary summary = cli::writePlanPage(
+                path, self.sources.problem, self.scene->world(), self.solver->task(), plan);
+            return pythonValue(cli::pageJson(path, summary));
+          },
+          py::arg("path"),
+          "Writes the plan as one self-contained 3-D web page, as `kaboum solve --html` "
+          "(docs/viewer.md); returns its summary (bytes, meshes, pieces, actions, branches, "
+          "duration).")
       .def("execute", &execute, py::arg("sensing") = py::none(), py::kw_only(),
            py::arg("profile") = "rest-to-rest",
            "Runs the plan from its root as `kaboum execute` does: `sensing(test)` gives each "

@@ -72,6 +72,15 @@ def test_statistics_and_plan_file_are_the_cli_s(solution, tmp_path):
     assert json.loads(path.read_text())["nodes"] == plan["nodes"]
 
 
+def test_the_viewer_page_of_the_plan(solution, tmp_path):
+    page = tmp_path / "plan.html"
+    summary = solution.write_page(str(page))
+    assert summary["actions"] == 2 and summary["branches"] == 0
+    assert page.read_text().startswith("<!doctype html>")
+    with pytest.raises(kaboum.InputError, match="cannot write the page"):
+        solution.write_page(str(tmp_path / "no-such-folder" / "plan.html"))
+
+
 def test_the_same_seed_gives_the_same_paths(pick_and_place, solution):
     again = kaboum.solve(pick_and_place, example("pick-and-place/domain.pddl"),
                          example("pick-and-place/problem.pddl"))
