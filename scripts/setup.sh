@@ -7,6 +7,7 @@ packages=(
   libeigen3-dev libassimp-dev libcli11-dev nlohmann-json3-dev libfmt-dev liburdfdom-dev
   libqhull-dev libfcl-dev libccd-dev libbullet-dev libbullet-extras-dev libyaml-cpp-dev libompl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  pybind11-dev python3-dev python3-numpy python3-pytest
   dart-doc
 )
 

@@ -70,6 +70,7 @@ world::World loadWorld(const std::string& sceneFile, const SceneLoadOptions& opt
   world::WorldOptions worldOptions;
   worldOptions.cacheDirectory = cacheDirectory(options);
   worldOptions.threads = options.threads;
+  worldOptions.pieces = options.pieces;
   io::SceneDescription scene = io::readSceneFile(sceneFile);
   if (options.epsilon) applyEpsilonOption(*options.epsilon, scene.settings);
   return world::World(std::move(scene), worldOptions);

@@ -19,6 +19,7 @@ struct SceneLoadOptions {
   std::string cacheDirectory;          // empty: defaultCacheDirectory()
   unsigned threads = 0;                // decomposing meshes; 0: the hardware's
   std::optional<std::string> epsilon;  // --epsilon as given (metres or N%); none: the scene's
+  world::MeshPieces pieces = world::MeshPieces::Decomposition;  // the Python API may ask for hulls
 };
 
 // Adds --no-cache, --cache-dir DIR, --threads N and --epsilon E to `command`.

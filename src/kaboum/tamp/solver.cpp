@@ -119,6 +119,7 @@ Solver::Solver(const World& world, ContingentProblem problem, SolveOptions optio
   attachments_ = std::make_unique<GeometricAttachments>(world, options_.geometry);
   ProcedureRegistry registry;
   attachments_->registerProcedures(registry);
+  if (options_.registerProcedures) options_.registerProcedures(*attachments_, registry);
   for (const Module& module : problem_.domain.modules) {
     if (!isGeometric(module)) continue;
     const bool effect = GeometricAttachments::isGeometricEffect(module.procedure);

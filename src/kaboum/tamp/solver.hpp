@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,6 +25,9 @@ struct SolveOptions {
   TampOptions geometry;
   bool verify = true;  // replay every path with the independent verifier
   verify::VerifyOptions verification;
+  // Registers further procedures (the Python API's attachments, docs/python.md) after the
+  // geometric attachments, whose map gives them the geometric state behind an identifier.
+  std::function<void(GeometricAttachments&, symbolic::ProcedureRegistry&)> registerProcedures;
 };
 
 // One motion of a plan replayed on the original meshes.
