@@ -14,25 +14,9 @@ using namespace kaboum::testing;
 
 namespace {
 
-// One decomposition cache for the tests of this file (the KR5's meshes take seconds to
-// decompose), removed when the test program ends.
-class SharedCache : public ::testing::Environment {
- public:
-  static std::string option() { return " --cache-dir '" + directory().string() + "'"; }
-  void TearDown() override { std::filesystem::remove_all(directory()); }
-
- private:
-  static std::filesystem::path directory() {
-    return std::filesystem::temp_directory_path() /
-           ("kaboum-motion-cli-cache-" + std::to_string(::getpid()));
-  }
-};
-const ::testing::Environment* const kSharedCache =
-    ::testing::AddGlobalTestEnvironment(new SharedCache);
-
 std::string kr5Motion(const std::string& arguments) {
   return "motion '" + exampleFile("scenes/kr5-cell.yaml") + "' --robot kr5" +
-         SharedCache::option() + " " + arguments;
+         test::sharedCacheOption() + " " + arguments;
 }
 
 TEST(MotionCli, PlansAroundThePoleAndTheIndependentVerifierFindsThePathFree) {
@@ -48,7 +32,7 @@ TEST(MotionCli, PlansAroundThePoleAndTheIndependentVerifierFindsThePathFree) {
   EXPECT_GE(file.waypoints.size(), 3u);
   const test::CliResult verified =
       test::runCli(dir, "verify-path '" + exampleFile("scenes/kr5-cell.yaml") + "' '" + path + "'" +
-                            SharedCache::option() + " --quiet");
+                            test::sharedCacheOption() + " --quiet");
   EXPECT_EQ(verified.exitCode, 0) << verified.out << verified.err;
 }
 
