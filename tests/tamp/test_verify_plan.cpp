@@ -214,6 +214,23 @@ TEST(VerifyPlanFileBadInput, OneLineNamesTheFileAndTheKey) {
   file["nodes"][0]["test"] = "(flying block)";
   EXPECT_EQ(inputError(file), "plan.json: nodes[0].test: unknown atom (flying block)");
 
+  // A join step names two different movable objects.
+  const auto withJoin = [&](const json& objects) {
+    json joined = planFile();
+    json& steps = node(joined, "(pickup kr5 block left)")["geometry"][0]["steps"];
+    steps.insert(steps.begin() + 1,
+                 json{{"kind", "join"}, {"robot", "kr5"}, {"tool", ""}, {"objects", objects}});
+    return inputError(joined);
+  };
+  EXPECT_EQ(withJoin({"block"}),
+            "plan.json: nodes[2].geometry[0].steps[1].objects: expected the two objects joined");
+  EXPECT_EQ(withJoin({"block", "table"}),
+            "plan.json: nodes[2].geometry[0].steps[1].objects[1]: expected the name of a movable "
+            "object of the scene");
+  EXPECT_EQ(withJoin({"block", "block"}),
+            "plan.json: nodes[2].geometry[0].steps[1].objects: an object cannot be joined to "
+            "itself");
+
   EXPECT_EQ(inputError(json::array()), "plan.json: (top level): expected a JSON object");
   file = planFile();
   file["format"] = "kaboum-path";
