@@ -9,7 +9,13 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   pybind11-dev python3-dev python3-numpy python3-pytest
   dart-doc
+  chromium
 )
+# The web viewer (docs/viewer.md): Node.js to bundle its script at build time (any Node.js with
+# npm on the PATH will do), Debian's Chromium for its browser test, and below its npm packages
+# (three, esbuild, playwright-core; never a browser download) from viewer/package-lock.json,
+# installed again only when the lock file changed.
+command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)
 
 missing=()
 for p in "${packages[@]}"; do
@@ -24,23 +30,6 @@ if [ ${#missing[@]} -gt 0 ]; then
   $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-# The web viewer (docs/viewer.md): Node.js to bundle its script at build time, Debian's Chromium
-# for its browser test, and its npm packages (three, esbuild, playwright-core; never a browser
-# download) from viewer/package-lock.json, installed again only when the lock file changed.
-viewer_packages=(chromium)
-command -v npm >/dev/null 2>&1 || viewer_packages+=(nodejs npm)
-viewer_missing=()
-for p in "${viewer_packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" ||
-    viewer_missing+=("$p")
-done
-if [ ${#viewer_missing[@]} -gt 0 ]; then
-  SUDO=""
-  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
-  export DEBIAN_FRONTEND=noninteractive
-  $SUDO apt-get update -q
-  $SUDO apt-get install -y -q --no-install-recommends "${viewer_missing[@]}"
-fi
 viewer_dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/../viewer" && pwd)"
 if ! cmp -s "$viewer_dir/package-lock.json" "$viewer_dir/node_modules/.kaboum-installed-lock"; then
   (cd "$viewer_dir" &&
