@@ -12,9 +12,6 @@ using symbolic::AttachmentArgs;
 
 namespace {
 
-constexpr std::string_view kNotAnArm = "not a robot with a tool nor a tool of the scene";
-constexpr std::string_view kNotAMovableObject = "not a movable object of the scene";
-
 // The index of `object` among what robot `robot` holds in `state`.
 std::size_t heldIndex(const GeometricState& state, std::size_t robot, std::size_t object) {
   const std::vector<std::size_t>& held = state.robots[robot].heldObjects;

@@ -100,8 +100,6 @@ GeometricAttachments::~GeometricAttachments() = default;
 
 namespace {
 
-constexpr std::string_view kNotAnArm = "not a robot with a tool nor a tool of the scene";
-constexpr std::string_view kNotAMovableObject = "not a movable object of the scene";
 constexpr std::string_view kNotALocation = "not a location of the scene";
 // Parts joined by an assembly move only with the assembly actions.
 constexpr std::string_view kJoined = "the object is assembled with another part";

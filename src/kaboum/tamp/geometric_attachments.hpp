@@ -75,6 +75,11 @@ struct GeometricStep {
 
 const char* toString(GeometricStep::Kind kind);
 
+// Why an attachment call fails when an argument names no arm or no movable object (the standard
+// and the scenario attachments alike).
+inline constexpr std::string_view kNotAnArm = "not a robot with a tool nor a tool of the scene";
+inline constexpr std::string_view kNotAMovableObject = "not a movable object of the scene";
+
 // The robot holding scene object `object` in `state`, if one does.
 std::optional<std::size_t> holderOf(const GeometricState& state, std::size_t object);
 // Where scene object `object` is in `state`: its placement, or where the robot holding it holds
