@@ -209,6 +209,77 @@ TEST(RobotSweep, DenseSamplingNeverFindsASelfCollisionOfAHeldObjectTheSweepCalle
   EXPECT_LT(swept, motions);
 }
 
+// Two parts no moving joint moves relative to each other (an object held on the wrist and the
+// palm while the wrist stays) keep their distance along the motion: checked once, at the start,
+// an overlap is reported whatever the other joints do.
+TEST(RobotSweep, PartsNoMovingJointMovesApartAreCheckedAtTheStart) {
+  RobotCollisionModel robot = kaboum::testing::robotCollisionModel(test::kKr5);
+  for (std::size_t i = 0; i < robot.partCount(); ++i) {  // only the held object is checked
+    for (std::size_t j = i + 1; j < robot.partCount(); ++j) robot.filter().allow(i, j);
+  }
+  const int wrist = *robot.model().findLink("wrist");
+  const int palm = *robot.model().findLink("palm");
+  const std::vector<double> home(6, 0.0);
+  std::vector<Pose> poses(robot.model().links().size());
+  robot.model().linkPoses(home, poses);
+  // A small box at the palm's centre, held on the wrist.
+  std::size_t palmPart = 0;
+  while (robot.part(palmPart).link != palm) ++palmPart;
+  const Vec3 palmCentre =
+      poses[static_cast<std::size_t>(palm)] * robot.part(palmPart).body->bounds().centre;
+  const Vec3 inWrist = poses[static_cast<std::size_t>(wrist)].inverse() * palmCentre;
+  const std::vector<Attachment> held{
+      {test::boxBody(inWrist - Vec3::Constant(0.005), inWrist + Vec3::Constant(0.005)), wrist,
+       Pose::Identity()}};
+  RobotSweep sweep(robot);
+  std::mt19937_64 rng(5);
+  for (int m = 0; m < 20; ++m) {
+    auto qa = randomConfiguration(robot.model(), rng), qb = randomConfiguration(robot.model(), rng);
+    qa[4] = qb[4] = qa[5] = qb[5] = 0;  // the wrist pitch and roll stay
+    ASSERT_GE(firstSelfCollidingSample(robot, qa, qb, 10, held), 0);
+    EXPECT_TRUE(sweep.selfCollides(qa, qb, held, 0.0, 0.005)) << "motion " << m;
+  }
+}
+
+// The part steps' culling gives the verdict of comparing every swept piece of one robot with every
+// swept piece of the other.
+TEST(SweptVolumes, CullingGivesTheVerdictOfEveryPiecePair) {
+  const RobotModel model = loadUrdf(test::kKr5);
+  const Pose offset(Eigen::Translation3d(0.9, 0, 0) * Eigen::AngleAxisd(3.14159, Vec3::UnitY()));
+  RobotCollisionModel left = kaboum::testing::robotCollisionModel(model);
+  RobotCollisionModel right = kaboum::testing::robotCollisionModel(model);
+  right.setBasePose(offset);
+  RobotSweep sweepLeft(left), sweepRight(right), allLeft(left), allRight(right);
+  std::mt19937_64 rng(31);
+  const double epsilon = 0.005, reach = 2 * epsilon;
+  int collisions = 0;
+  const int motions = 30;
+  for (int m = 0; m < motions; ++m) {
+    const auto qa0 = randomConfiguration(model, rng), qa1 = randomConfiguration(model, rng);
+    const auto qb0 = randomConfiguration(model, rng);
+    const auto qb1 = m % 3 == 0 ? qb0 : randomConfiguration(model, rng);  // b still, or moving
+    const bool culled =
+        sweptVolumesCollide(sweepLeft, qa0, qa1, {}, sweepRight, qb0, qb1, {}, 0, epsilon);
+    const auto piecesA = allLeft.sweep(qa0, qa1, {}, epsilon);
+    const auto piecesB = allRight.sweep(qb0, qb1, {}, epsilon);
+    bool every = false;
+    for (const RobotSweep::Piece& a : piecesA) {
+      const Aabb box = a.box.inflated(reach);
+      for (const RobotSweep::Piece& b : piecesB) {
+        if (box.overlaps(b.box) && intersects(a.shape, b.shape, reach)) {
+          every = true;
+          break;
+        }
+      }
+      if (every) break;
+    }
+    EXPECT_EQ(culled, every) << "motion " << m;
+    collisions += culled;
+  }
+  EXPECT_GT(collisions, 0);
+  EXPECT_LT(collisions, motions);
+}
+
 TEST(RobotSweep, SelfCollisionFollowsTheFilter) {
   RobotCollisionModel robot = kaboum::testing::robotCollisionModel(test::kKr5);
   RobotSweep sweep(robot);

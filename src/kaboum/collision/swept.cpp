@@ -2,16 +2,49 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstdint>
 #include <limits>
-#include <numeric>
 
 namespace kaboum::collision {
 
 using namespace kaboum::geometry;
 using namespace kaboum::kinematics;
 
+namespace {
+
+// A region holding everything: no piece is left out for being far from it.
+const Aabb kEverywhere{Vec3::Constant(-std::numeric_limits<double>::infinity()),
+                       Vec3::Constant(std::numeric_limits<double>::infinity())};
+
+}  // namespace
+
 RobotSweep::RobotSweep(const RobotCollisionModel& robot)
-    : robot_(robot), chains_(linkSweepChains(robot.model())) {}
+    : robot_(robot), chains_(linkSweepChains(robot.model())) {
+  const RobotModel& model = robot.model();
+  linkVariables_.resize(model.links().size());
+  // Joints are stored parent-first, so a link's parent path is complete before the link.
+  for (const Joint& joint : model.joints()) {
+    std::vector<int> path = linkVariables_[static_cast<std::size_t>(joint.parentLink)];
+    if (joint.variable >= 0) path.push_back(joint.variable);
+    linkVariables_[static_cast<std::size_t>(joint.childLink)] = std::move(path);
+  }
+}
+
+bool RobotSweep::rigidDuringMotion(int linkA, int linkB) const {
+  // The moving joints on the two root paths, in path order, must be the same: those are the
+  // common ancestors', which move both links alike.
+  const std::vector<int>& a = linkVariables_[static_cast<std::size_t>(linkA)];
+  const std::vector<int>& b = linkVariables_[static_cast<std::size_t>(linkB)];
+  std::size_t i = 0, j = 0;
+  for (;;) {
+    while (i < a.size() && !moved_[static_cast<std::size_t>(a[i])]) ++i;
+    while (j < b.size() && !moved_[static_cast<std::size_t>(b[j])]) ++j;
+    if (i == a.size() || j == b.size()) return i == a.size() && j == b.size();
+    if (a[i] != b[j]) return false;
+    ++i;
+    ++j;
+  }
+}
 
 std::size_t RobotSweep::sample(std::span<const double> qa, std::span<const double> qb,
                                std::span<const Attachment> held, double epsilon) {
@@ -41,17 +74,21 @@ std::size_t RobotSweep::sample(std::span<const double> qa, std::span<const doubl
 
 void RobotSweep::sweptPieces(std::size_t part, std::span<const Attachment> held,
                              std::span<const Pose> start, std::span<const Pose> end,
-                             std::vector<Piece>& out) const {
+                             const Aabb& region, std::vector<Piece>& out) const {
   const CollisionBody& body = *robot_.part(part, held).body;
   const Pose from = robot_.partPose(part, start, held), to = robot_.partPose(part, end, held);
   out.clear();
   for (std::size_t p = 0; p < body.pieceCount(); ++p) {
     const PieceBounds& bounds = body.pieceBounds(p);
     const Vec3 centreStart = from * bounds.centre, centreEnd = to * bounds.centre;
+    const Vec3 centre = 0.5 * (centreStart + centreEnd);
+    const double radius = bounds.radius + 0.5 * (centreEnd - centreStart).norm();
+    if ((centre.cwiseMax(region.lo).cwiseMin(region.hi) - centre).squaredNorm() > radius * radius) {
+      continue;
+    }
     out.push_back(
         {SweptPiece(TransformedSupport(body.piece(p), from), TransformedSupport(body.piece(p), to)),
-         transformedAabb(bounds.box, from).merged(transformedAabb(bounds.box, to)),
-         0.5 * (centreStart + centreEnd), bounds.radius + 0.5 * (centreEnd - centreStart).norm(),
+         transformedAabb(bounds.box, from).merged(transformedAabb(bounds.box, to)), centre, radius,
          part});
   }
 }
@@ -60,33 +97,42 @@ std::span<const RobotSweep::Piece> RobotSweep::sweep(std::span<const double> qa,
                                                      std::span<const double> qb,
                                                      std::span<const Attachment> held,
                                                      double epsilon) {
-  constexpr double kEverywhere = std::numeric_limits<double>::infinity();
-  return sweepNear(qa, qb, held, epsilon,
-                   {Vec3::Constant(-kEverywhere), Vec3::Constant(kEverywhere)});
+  pieces_.clear();
+  for (const PartStep& step : partSteps(qa, qb, held, epsilon)) {
+    stepPieces(step, held, kEverywhere, piecesI_);
+    pieces_.insert(pieces_.end(), piecesI_.begin(), piecesI_.end());
+  }
+  return pieces_;
 }
 
-std::span<const RobotSweep::Piece> RobotSweep::sweepNear(std::span<const double> qa,
-                                                         std::span<const double> qb,
-                                                         std::span<const Attachment> held,
-                                                         double epsilon, const Aabb& region) {
+std::span<const RobotSweep::PartStep> RobotSweep::partSteps(std::span<const double> qa,
+                                                            std::span<const double> qb,
+                                                            std::span<const Attachment> held,
+                                                            double epsilon) {
   const std::size_t finest = sample(qa, qb, held, epsilon);
-  pieces_.clear();
+  partSteps_.clear();
   for (std::size_t i = 0; i < robot_.partCount(held); ++i) {
-    const Aabb& box = robot_.part(i, held).body->bounds().box;
+    const PieceBounds& bounds = robot_.part(i, held).body->bounds();
     const std::size_t n = static_cast<std::size_t>(subdivisions_[i]);
     const std::size_t stride = finest / n;
     for (std::size_t k = 0; k < n; ++k) {
-      const std::span<const Pose> start = samplePoses(k * stride),
-                                  end = samplePoses((k + 1) * stride);
-      // The part's box at both ends contains its swept pieces' boxes over the sub-step.
-      const Aabb swept = transformedAabb(box, robot_.partPose(i, start, held))
-                             .merged(transformedAabb(box, robot_.partPose(i, end, held)));
-      if (!swept.overlaps(region)) continue;
-      sweptPieces(i, held, start, end, piecesI_);
-      pieces_.insert(pieces_.end(), piecesI_.begin(), piecesI_.end());
+      const Pose from = robot_.partPose(i, samplePoses(k * stride), held);
+      const Pose to = robot_.partPose(i, samplePoses((k + 1) * stride), held);
+      const Vec3 centreStart = from * bounds.centre, centreEnd = to * bounds.centre;
+      partSteps_.push_back(
+          {i, k, transformedAabb(bounds.box, from).merged(transformedAabb(bounds.box, to)),
+           0.5 * (centreStart + centreEnd),
+           bounds.radius + 0.5 * (centreEnd - centreStart).norm()});
     }
   }
-  return pieces_;
+  return partSteps_;
+}
+
+void RobotSweep::stepPieces(const PartStep& step, std::span<const Attachment> held,
+                            const Aabb& region, std::vector<Piece>& out) const {
+  const std::size_t stride = (samples_ - 1) / static_cast<std::size_t>(subdivisions_[step.part]);
+  sweptPieces(step.part, held, samplePoses(step.step * stride),
+              samplePoses((step.step + 1) * stride), region, out);
 }
 
 std::optional<std::size_t> RobotSweep::firstSceneCollision(std::span<const double> qa,
@@ -95,30 +141,16 @@ std::optional<std::size_t> RobotSweep::firstSceneCollision(std::span<const doubl
                                                            const CollisionScene& scene,
                                                            std::span<const Placement> sceneState,
                                                            double margin, double epsilon) {
-  const std::size_t finest = sample(qa, qb, held, epsilon);
-  for (std::size_t i = 0; i < robot_.partCount(held); ++i) {
-    const PieceBounds& bounds = robot_.part(i, held).body->bounds();
-    const std::size_t n = static_cast<std::size_t>(subdivisions_[i]);
-    const std::size_t stride = finest / n;
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::span<const Pose> start = samplePoses(k * stride),
-                                  end = samplePoses((k + 1) * stride);
-      // The part's swept box and bounding sphere contain its swept pieces: with no scene piece
-      // near them, the pieces need not be built.
-      const Pose from = robot_.partPose(i, start, held), to = robot_.partPose(i, end, held);
-      const Vec3 centreStart = from * bounds.centre, centreEnd = to * bounds.centre;
-      if (!scene.anyPieceNear(
-              sceneState, transformedAabb(bounds.box, from).merged(transformedAabb(bounds.box, to)),
-              0.5 * (centreStart + centreEnd),
-              bounds.radius + 0.5 * (centreEnd - centreStart).norm(), margin + epsilon)) {
-        continue;
-      }
-      sweptPieces(i, held, start, end, piecesI_);
-      for (const Piece& piece : piecesI_) {
-        if (auto hit = scene.firstWithin(sceneState, piece.shape, piece.box, piece.centre,
-                                         piece.radius, margin + epsilon)) {
-          return hit;
-        }
+  for (const PartStep& step : partSteps(qa, qb, held, epsilon)) {
+    // With no scene piece near the part step's bounds, its pieces need not be built.
+    if (!scene.anyPieceNear(sceneState, step.box, step.centre, step.radius, margin + epsilon)) {
+      continue;
+    }
+    stepPieces(step, held, kEverywhere, piecesI_);
+    for (const Piece& piece : piecesI_) {
+      if (auto hit = scene.firstWithin(sceneState, piece.shape, piece.box, piece.centre,
+                                       piece.radius, margin + epsilon)) {
+        return hit;
       }
     }
   }
@@ -135,78 +167,59 @@ bool pieceWithin(const RobotSweep::Piece& pa, const Aabb& box, const RobotSweep:
          intersects(pa.shape, pb.shape, reach);
 }
 
-// True if some swept piece of `a` comes within `reach` of some swept piece of `b`.
-bool anyPiecesWithin(std::span<const RobotSweep::Piece> a, std::span<const RobotSweep::Piece> b,
-                     double reach) {
-  for (const RobotSweep::Piece& pa : a) {
-    const Aabb box = pa.box.inflated(reach);
-    for (const RobotSweep::Piece& pb : b) {
-      if (pieceWithin(pa, box, pb, reach)) return true;
-    }
+// The indices of the pieces of `pieces` whose boxes overlap `region`, into `out`.
+void piecesIn(std::span<const RobotSweep::Piece> pieces, const Aabb& region,
+              std::vector<std::uint32_t>& out) {
+  out.clear();
+  for (std::size_t p = 0; p < pieces.size(); ++p) {
+    if (pieces[p].box.overlaps(region)) out.push_back(static_cast<std::uint32_t>(p));
   }
-  return false;
 }
 
-// The same verdict for many pieces (two robots' whole sweeps), by sweep and prune along one axis:
-// the axis on which the two sweeps' overall boxes overlap least (relative to b's extent), `order`
-// (scratch) b's pieces sorted by their boxes' lower end on it, and each piece of `a` meets only the
-// pieces of b whose ranges on it overlap its inflated box. Allocates nothing once `order` has
-// grown.
-bool anyPiecesWithinSorted(std::span<const RobotSweep::Piece> a,
-                           std::span<const RobotSweep::Piece> b, double reach,
-                           std::vector<std::uint32_t>& order) {
-  if (a.empty() || b.empty()) return false;
-  Aabb all{a[0].box}, bAll{b[0].box};
-  for (const RobotSweep::Piece& pa : a) all = all.merged(pa.box);
-  for (const RobotSweep::Piece& pb : b) bAll = bAll.merged(pb.box);
-  int axis = 0;
-  double least = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < 3; ++k) {
-    const double overlap = std::min(all.hi[k], bAll.hi[k]) - std::max(all.lo[k], bAll.lo[k]);
-    const double share = overlap / std::max(bAll.hi[k] - bAll.lo[k], 1e-12);
-    if (share < least) {
-      least = share;
-      axis = k;
-    }
-  }
-  order.resize(b.size());
-  std::iota(order.begin(), order.end(), 0U);
-  const auto lower = [&](std::uint32_t i) { return b[i].box.lo[axis]; };
-  std::sort(order.begin(), order.end(),
-            [&](std::uint32_t i, std::uint32_t j) { return lower(i) < lower(j); });
-  double widest = 0;  // of b's boxes on the axis: a box reaching x starts at x - widest or later
-  for (const RobotSweep::Piece& pb : b) {
-    widest = std::max(widest, pb.box.hi[axis] - pb.box.lo[axis]);
-  }
-  for (const RobotSweep::Piece& pa : a) {
-    const Aabb box = pa.box.inflated(reach);
-    auto it = std::lower_bound(order.begin(), order.end(), box.lo[axis] - widest,
-                               [&](std::uint32_t i, double x) { return lower(i) < x; });
-    for (; it != order.end() && lower(*it) <= box.hi[axis]; ++it) {
-      if (pieceWithin(pa, box, b[*it], reach)) return true;
-    }
-  }
-  return false;
+Aabb boxOf(std::span<const RobotSweep::Piece> pieces) {
+  Aabb box = pieces.front().box;
+  for (const RobotSweep::Piece& piece : pieces) box = box.merged(piece.box);
+  return box;
 }
 
 }  // namespace
+
+bool RobotSweep::anyPiecesWithin(std::span<const Piece> a, std::span<const Piece> b, double reach) {
+  if (a.empty() || b.empty()) return false;
+  // Only a piece within reach of the other side's overall box can meet one of its pieces: two
+  // parts that come close meet along a small share of their pieces.
+  piecesIn(a, boxOf(b).inflated(reach), nearA_);
+  if (nearA_.empty()) return false;
+  piecesIn(b, boxOf(a).inflated(reach), nearB_);
+  for (const std::uint32_t i : nearA_) {
+    const Piece& pa = a[i];
+    const Aabb box = pa.box.inflated(reach);
+    for (const std::uint32_t j : nearB_) {
+      if (pieceWithin(pa, box, b[j], reach)) return true;
+    }
+  }
+  return false;
+}
 
 bool RobotSweep::partsMeetDuring(std::size_t i, std::size_t j, std::span<const Attachment> held,
                                  std::span<const double> qa, std::span<const double> qb,
                                  const Interval& interval, int depth, double reach) {
   // The parts' bounding spheres swept over the interval contain every swept piece: apart, no
-  // piece pair can meet, and the pieces need not be built.
-  const auto sweptSphere = [&](std::size_t part) {
+  // piece pair can meet, and the pieces need not be built; near, only the pieces near the other
+  // part's swept box are.
+  const auto sweptBounds = [&](std::size_t part) {
     const PieceBounds& bounds = robot_.part(part, held).body->bounds();
-    const Vec3 start = robot_.partPose(part, interval.start, held) * bounds.centre;
-    const Vec3 end = robot_.partPose(part, interval.end, held) * bounds.centre;
-    return std::pair{0.5 * (start + end), bounds.radius + 0.5 * (end - start).norm()};
+    const Pose from = robot_.partPose(part, interval.start, held);
+    const Pose to = robot_.partPose(part, interval.end, held);
+    const Vec3 start = from * bounds.centre, end = to * bounds.centre;
+    return PartStep{part, 0,
+                    transformedAabb(bounds.box, from).merged(transformedAabb(bounds.box, to)),
+                    0.5 * (start + end), bounds.radius + 0.5 * (end - start).norm()};
   };
-  const auto [centreI, radiusI] = sweptSphere(i);
-  const auto [centreJ, radiusJ] = sweptSphere(j);
-  if (!spheresWithin(centreI, radiusI, centreJ, radiusJ, reach)) return false;
-  sweptPieces(i, held, interval.start, interval.end, piecesI_);
-  sweptPieces(j, held, interval.start, interval.end, piecesJ_);
+  const PartStep stepI = sweptBounds(i), stepJ = sweptBounds(j);
+  if (!spheresWithin(stepI.centre, stepI.radius, stepJ.centre, stepJ.radius, reach)) return false;
+  sweptPieces(i, held, interval.start, interval.end, stepJ.box.inflated(reach), piecesI_);
+  sweptPieces(j, held, interval.start, interval.end, stepI.box.inflated(reach), piecesJ_);
   if (!anyPiecesWithin(piecesI_, piecesJ_, reach)) return false;
   if (depth == kSelfRefinements) return true;
   // Halving a sub-step keeps its chord error within ε (the bound of Eq. 4.19 only shrinks).
@@ -226,10 +239,21 @@ bool RobotSweep::selfCollides(std::span<const double> qa, std::span<const double
   const std::size_t finest = sample(qa, qb, held, epsilon);
   midPoses_.resize(static_cast<std::size_t>(kSelfRefinements) * robot_.model().links().size());
   const double reach = margin + 2 * epsilon;
+  moved_.resize(qa.size());
+  for (std::size_t v = 0; v < qa.size(); ++v) moved_[v] = qa[v] != qb[v];
   const std::size_t count = robot_.partCount(held);
   for (std::size_t i = 0; i < count; ++i) {
     for (std::size_t j = i + 1; j < count; ++j) {
       if (!robot_.checksPair(i, j, held)) continue;
+      const Attachment &partI = robot_.part(i, held), &partJ = robot_.part(j, held);
+      if (rigidDuringMotion(partI.link, partJ.link)) {
+        // Their distance is the same all along the motion: one static check is exact.
+        if (bodiesCollide(*partI.body, robot_.partPose(i, samplePoses(0), held), *partJ.body,
+                          robot_.partPose(j, samplePoses(0), held), margin)) {
+          return true;
+        }
+        continue;
+      }
       const auto steps = static_cast<std::size_t>(std::max(subdivisions_[i], subdivisions_[j]));
       const std::size_t stride = finest / steps;
       for (std::size_t k = 0; k < steps; ++k) {
@@ -250,13 +274,23 @@ bool sweptVolumesCollide(RobotSweep& a, std::span<const double> qa0, std::span<c
                          std::span<const double> qb0, std::span<const double> qb1,
                          std::span<const Attachment> heldB, double margin, double epsilon) {
   const double reach = margin + 2 * epsilon;
-  const auto piecesB = b.sweep(qb0, qb1, heldB, epsilon);
-  if (piecesB.empty()) return false;
-  // Only a's pieces near b's whole sweep can meet one of b's.
-  Aabb region = piecesB.front().box;
-  for (const RobotSweep::Piece& piece : piecesB) region = region.merged(piece.box);
-  const auto piecesA = a.sweepNear(qa0, qa1, heldA, epsilon, region.inflated(reach));
-  return anyPiecesWithinSorted(piecesA, piecesB, reach, b.order_);
+  const auto stepsB = b.partSteps(qb0, qb1, heldB, epsilon);
+  const auto stepsA = a.partSteps(qa0, qa1, heldA, epsilon);
+  // Part steps first: only the pieces of part steps whose bounds come within reach, and of those
+  // only the pieces near the other step's box, are built and compared.
+  for (const RobotSweep::PartStep& stepA : stepsA) {
+    const Aabb boxA = stepA.box.inflated(reach);
+    for (const RobotSweep::PartStep& stepB : stepsB) {
+      if (!boxA.overlaps(stepB.box) ||
+          !spheresWithin(stepA.centre, stepA.radius, stepB.centre, stepB.radius, reach)) {
+        continue;
+      }
+      a.stepPieces(stepA, heldA, stepB.box.inflated(reach), a.piecesI_);
+      b.stepPieces(stepB, heldB, boxA, b.piecesJ_);
+      if (a.anyPiecesWithin(a.piecesI_, b.piecesJ_, reach)) return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace kaboum::collision

@@ -62,11 +62,22 @@ class RobotSweep {
   // part of the robot holding `held` along the motion lies within `epsilon` of one of them.
   std::span<const Piece> sweep(std::span<const double> qa, std::span<const double> qb,
                                std::span<const Attachment> held, double epsilon);
-  // sweep()'s pieces of the sub-steps whose part's swept box meets `region`: the only ones that
-  // can come near it; the others are not built.
-  std::span<const Piece> sweepNear(std::span<const double> qa, std::span<const double> qb,
-                                   std::span<const Attachment> held, double epsilon,
-                                   const Aabb& region);
+
+  // One part over one of its sub-steps, with bounds of all its swept pieces there: the part's box
+  // at both ends merged, and the sphere holding its bounding sphere at both ends.
+  struct PartStep {
+    std::size_t part = 0, step = 0;
+    Aabb box;
+    Vec3 centre;
+    double radius = 0;
+  };
+  // Samples qa -> qb as sweep() does and returns every part's sub-steps; stepPieces() builds the
+  // swept pieces of one of them whose bounding spheres meet `region` (valid until the next
+  // sampling).
+  std::span<const PartStep> partSteps(std::span<const double> qa, std::span<const double> qb,
+                                      std::span<const Attachment> held, double epsilon);
+  void stepPieces(const PartStep& step, std::span<const Attachment> held, const Aabb& region,
+                  std::vector<Piece>& out) const;
 
   // Definition 1 (2): the first object of `scene` in `sceneState` within margin + ε of the swept
   // volume of qa -> qb, holding `held`. Never misses an object the robot comes within `margin` of
@@ -85,8 +96,9 @@ class RobotSweep {
   // parts swept over the same time interval and queried at margin + 2ε; an interval whose swept
   // pieces meet is bisected (fresh forward kinematics at its middle, still within ε) up to
   // kSelfRefinements times, since two parts may sweep through the same place at different times of
-  // one sub-step. Never misses a self-collision anywhere along the motion; allocates nothing once
-  // the buffers have grown.
+  // one sub-step. A pair that no moving joint moves relative to each other (two fingers during an
+  // arm motion) is checked once, at qa, at `margin`. Never misses a self-collision anywhere along
+  // the motion; allocates nothing once the buffers have grown.
   bool selfCollides(std::span<const double> qa, std::span<const double> qb,
                     std::span<const Attachment> held, double margin, double epsilon);
   static constexpr int kSelfRefinements = 6;
@@ -100,6 +112,9 @@ class RobotSweep {
     const std::size_t links = robot_.model().links().size();
     return {poses_.data() + sample * links, links};
   }
+  // Whether the pose of link `linkB` relative to link `linkA` stays the same over the motion whose
+  // moving variables are moved_: no moving joint lies on one of their root paths only.
+  [[nodiscard]] bool rigidDuringMotion(int linkA, int linkB) const;
   // Subdivisions per part and forward kinematics at the finest one's samples; returns the finest.
   std::size_t sample(std::span<const double> qa, std::span<const double> qb,
                      std::span<const Attachment> held, double epsilon);
@@ -112,19 +127,26 @@ class RobotSweep {
   bool partsMeetDuring(std::size_t i, std::size_t j, std::span<const Attachment> held,
                        std::span<const double> qa, std::span<const double> qb,
                        const Interval& interval, int depth, double reach);
-  // The swept pieces of part `part` between two link-pose sets, into `out` (resized).
+  // True if some piece of `a` comes within `reach` of some piece of `b` (box, bounding spheres,
+  // then GJK, on the pieces within reach of the other side's overall box).
+  bool anyPiecesWithin(std::span<const Piece> a, std::span<const Piece> b, double reach);
+  // The swept pieces of part `part` between two link-pose sets whose bounding spheres meet
+  // `region`, into `out` (resized): the others cannot come within it.
   void sweptPieces(std::size_t part, std::span<const Attachment> held, std::span<const Pose> start,
-                   std::span<const Pose> end, std::vector<Piece>& out) const;
+                   std::span<const Pose> end, const Aabb& region, std::vector<Piece>& out) const;
 
   const RobotCollisionModel& robot_;
   std::vector<LinkSweepChain> chains_;
+  std::vector<std::vector<int>> linkVariables_;  // per link: the variables on its root path
+  std::vector<std::uint8_t> moved_;              // per variable: whether the query moves it
   std::vector<int> subdivisions_;  // per part of the robot holding the objects of the query
   std::vector<Pose> poses_;        // samples x links
   std::vector<Pose> midPoses_;     // kSelfRefinements x links: bisection samples, one per depth
   std::vector<Piece> piecesI_, piecesJ_;  // scratch: one part's pieces over one sub-step
   std::vector<double> q_;
   std::vector<Piece> pieces_;
-  std::vector<std::uint32_t> order_;  // scratch of sweptVolumesCollide: pieces_ sorted on an axis
+  std::vector<std::uint32_t> nearA_, nearB_;  // scratch of anyPiecesWithin
+  std::vector<PartStep> partSteps_;
   std::size_t samples_ = 0;
 
   friend bool sweptVolumesCollide(RobotSweep& a, std::span<const double> qa0,
