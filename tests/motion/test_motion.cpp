@@ -126,6 +126,23 @@ TEST(MotionPlanner, PlansAroundThePoleWithCertifiedSegmentsThatAreDenselyFree) {
   expectDenselyFree(group, result.path);
 }
 
+// A joint held still keeps its value along a planned path, through the planner's samples too.
+TEST(MotionPlanner, AJointHeldStillKeepsItsValueAlongThePath) {
+  MotionGroup group = groupOf(kr5World(), {"kr5"});
+  const std::vector<double> start = group.configuration(group.context());
+  group.holdStill(0, 5);
+  EXPECT_EQ(group.lower()[5], start[5]);
+  EXPECT_EQ(group.upper()[5], start[5]);
+  const MotionResult result = planMotion(group, start, with(start, 0, -60 * kDegree));
+  ASSERT_EQ(result.status, PlannerStatus::Solved) << result.message;
+  ASSERT_GE(result.path.size(), 3u) << "planned around the pole, not straight";
+  for (const std::vector<double>& q : result.path) EXPECT_EQ(q[5], start[5]);
+  const MotionResult moved = planMotion(group, start, with(start, 5, start[5] + 0.5));
+  EXPECT_EQ(moved.status, PlannerStatus::InvalidGoal) << "the goal moves the held joint";
+  EXPECT_THROW(group.holdStill(0, 6), std::out_of_range);
+  EXPECT_THROW(group.holdStill(1, 0), std::out_of_range);
+}
+
 TEST(MotionPlanner, TheSameSeedGivesTheSamePath) {
   const MotionGroup group = groupOf(kr5World(), {"kr5"});
   const std::vector<double> start = group.configuration(group.context());

@@ -36,6 +36,17 @@ MotionGroup::MotionGroup(const World& world, GeometricState context,
   }
 }
 
+void MotionGroup::holdStill(std::size_t k, int variable) {
+  const std::size_t robot = robots_.at(k);
+  const std::vector<double>& q = context_.robots[robot].configuration;
+  const std::size_t i = offsets_[k] + static_cast<std::size_t>(variable);
+  if (variable < 0 || i >= offsets_[k + 1]) {
+    throw std::out_of_range("robot '" + world_->robots()[robot].name + "' has no variable " +
+                            std::to_string(variable));
+  }
+  lower_[i] = upper_[i] = q[static_cast<std::size_t>(variable)];
+}
+
 std::vector<double> MotionGroup::configuration(const GeometricState& state) const {
   std::vector<double> q;
   q.reserve(dimension());

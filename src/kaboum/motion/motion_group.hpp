@@ -37,6 +37,10 @@ class MotionGroup {
   // Writes q into the moving robots' configurations of `state` (of the world's shape). Allocates
   // nothing.
   void assign(std::span<const double> q, GeometricState& state) const;
+  // Keeps variable `variable` of the k-th moving robot at its value in the context: its limits
+  // become that value, so that no motion of the group moves it (a hand's fingers while its arm
+  // moves). Throws std::out_of_range for an unknown robot or variable.
+  void holdStill(std::size_t k, int variable);
   // The first coordinate outside its limits (beyond `tolerance`), or dimension().
   [[nodiscard]] std::size_t firstOutsideLimits(std::span<const double> q,
                                                double tolerance = 1e-9) const;

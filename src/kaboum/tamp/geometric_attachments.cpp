@@ -89,11 +89,28 @@ GeometricAttachments::GeometricAttachments(const World& world, TampOptions optio
   map_.intern(world.initialState());
   const SceneDescription& scene = world.description();
   for (std::size_t r = 0; r < scene.robots.size(); ++r) {
-    if (!scene.robots[r].tools.empty()) arms_[lowerCase(scene.robots[r].name)] = Arm{r, 0};
-    for (std::size_t t = 0; t < scene.robots[r].tools.size(); ++t) {
-      arms_.try_emplace(lowerCase(scene.robots[r].tools[t].name), Arm{r, t});
+    const RobotModel& model = world.robots()[r].collision.model();
+    const std::vector<ToolSpec>& tools = scene.robots[r].tools;
+    for (std::size_t t = 0; t < tools.size(); ++t) {
+      Arm arm{r, t, {}};
+      if (tools[t].hand && tools[t].hand->fingers) {
+        for (const Joint& joint : model.joints()) {
+          if (joint.variable >= 0 && tools[t].hand->fingers->open.contains(joint.name)) {
+            arm.fingers.push_back(joint.variable);
+          }
+        }
+      }
+      if (t == 0) arms_[lowerCase(scene.robots[r].name)] = arm;
+      arms_.try_emplace(lowerCase(tools[t].name), std::move(arm));
     }
   }
+}
+
+motion::MotionGroup GeometricAttachments::armGroup(const GeometricState& context,
+                                                   const Arm& arm) const {
+  motion::MotionGroup group(*world_, context, {arm.robot});
+  for (const int finger : arm.fingers) group.holdStill(0, finger);
+  return group;
 }
 
 GeometricAttachments::~GeometricAttachments() = default;
@@ -244,7 +261,7 @@ std::mt19937_64 GeometricAttachments::generator(const std::string& procedure,
 
 motion::MotionResult GeometricAttachments::plan(const GeometricState& context, const Arm& arm,
                                                 std::span<const double> goal) {
-  const motion::MotionGroup group(*world_, context, {arm.robot});
+  const motion::MotionGroup group = armGroup(context, arm);
   motion::MotionResult result =
       motion::planMotion(group, context.robots[arm.robot].configuration, goal, options_.motion);
   record(result);
@@ -253,7 +270,7 @@ motion::MotionResult GeometricAttachments::plan(const GeometricState& context, c
 
 motion::MotionResult GeometricAttachments::line(const GeometricState& context, const Arm& arm,
                                                 const Pose& target) {
-  const motion::MotionGroup group(*world_, context, {arm.robot});
+  const motion::MotionGroup group = armGroup(context, arm);
   motion::MotionResult result = motion::planCartesian(
       group, tool(arm), context.robots[arm.robot].configuration, target, options_.motion);
   record(result);
@@ -288,7 +305,8 @@ bool GeometricAttachments::fail(const std::string& procedure, const AttachmentAr
   return false;
 }
 
-// move(robot): a random configuration within the joint limits reached by a certified path.
+// move(robot): a random configuration of its joints (its fingers as they are) within the joint
+// limits, reached by a certified path.
 bool GeometricAttachments::move(const AttachmentArgs& args, std::span<double> writes) {
   ++statistics_.calls;
   const GeometricState& state = stateOf(args, "move");
@@ -300,7 +318,11 @@ bool GeometricAttachments::move(const AttachmentArgs& args, std::span<double> wr
   const bool holding = !state.robots[moving.robot].heldObjects.empty();
   std::string reason = "no samples";
   for (int sample = 0; sample < options_.moveSamples; ++sample) {
-    const std::vector<double> goal = randomConfiguration(model, rng);
+    std::vector<double> goal = randomConfiguration(model, rng);
+    for (const int finger : moving.fingers) {  // a move leaves the hand as it is
+      goal[static_cast<std::size_t>(finger)] =
+          state.robots[moving.robot].configuration[static_cast<std::size_t>(finger)];
+    }
     options_.motion.seed = rng();
     motion::MotionResult path = plan(state, moving, goal);
     if (path.status != PlannerStatus::Solved) {

@@ -154,7 +154,10 @@ class GeometricAttachments {
   struct Arm {
     std::size_t robot = 0;
     std::size_t tool = 0;
+    std::vector<int> fingers;  // the variables of its hand's finger joints, still while it moves
   };
+  // The joint space of `arm`'s robot over `context`, its fingers held still.
+  [[nodiscard]] motion::MotionGroup armGroup(const GeometricState& context, const Arm& arm) const;
 
   bool move(const symbolic::AttachmentArgs& args, std::span<double> writes);
   bool moveHome(const symbolic::AttachmentArgs& args, std::span<double> writes);
