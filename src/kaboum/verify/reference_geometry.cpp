@@ -171,10 +171,14 @@ Proximity ReferenceGeometry::proximity(std::size_t a, const Pose& poseA, std::si
       }
       if (lowerBound >= std::min(distanceOfInterest, result.distance)) continue;
       fcl::DistanceRequestd request;
+      // Starting from the distance of interest, FCL's bounding-volume traversal prunes every pair
+      // of nodes at least that far apart: a farther pair costs a few node tests, not a search.
+      const double bound = std::min(distanceOfInterest, result.distance);
       fcl::DistanceResultd distance;
+      distance.min_distance = bound;
       fcl::distance(shapeA.geometry.get(), transformA, shapeB.geometry.get(), transformB, request,
                     distance);
-      result.distance = std::min(result.distance, std::max(0.0, distance.min_distance));
+      if (distance.min_distance < bound) result.distance = std::max(0.0, distance.min_distance);
     }
   }
   return result;

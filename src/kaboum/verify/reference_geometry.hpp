@@ -15,8 +15,8 @@ namespace kaboum::verify {
 using namespace kaboum::world;
 
 // Two bodies at given poses: whether they collide (FCL collide), and their distance (FCL
-// distance) where it may be below the distance of interest; +infinity where bounding spheres
-// show that it is not, 0 where they collide.
+// distance) where it is below the distance of interest; +infinity where it is not, 0 where they
+// collide.
 struct Proximity {
   bool collides = false;
   double distance = 0;
@@ -40,8 +40,9 @@ class ReferenceGeometry {
   // The body of scene object `object` (its geometry in the object frame).
   [[nodiscard]] std::size_t objectBody(std::size_t object) const;
 
-  // Bodies a and b at these world poses. The distance is computed (smallest over their shape
-  // pairs) unless bounding spheres show it is at least `distanceOfInterest`.
+  // Bodies a and b at these world poses. The distance (smallest over their shape pairs) is
+  // computed where it is below `distanceOfInterest`: bounding spheres, then FCL's traversal
+  // started from that bound, skip what lies farther.
   [[nodiscard]] Proximity proximity(std::size_t a, const Pose& poseA, std::size_t b,
                                     const Pose& poseB, double distanceOfInterest) const;
 
