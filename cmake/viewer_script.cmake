@@ -8,11 +8,12 @@ function(kaboum_add_viewer_script target)
     message(FATAL_ERROR "Node.js (node) not found: the viewer's script is bundled with it at build "
                         "time. Run scripts/setup.sh, which installs it and the viewer's packages.")
   endif()
-  if(NOT EXISTS ${viewer_dir}/node_modules/esbuild/package.json
-     OR NOT EXISTS ${viewer_dir}/node_modules/three/package.json)
-    message(FATAL_ERROR "${viewer_dir}/node_modules lacks esbuild or three: run scripts/setup.sh "
-                        "(it runs npm ci in viewer/).")
-  endif()
+  foreach(package esbuild three meshoptimizer)
+    if(NOT EXISTS ${viewer_dir}/node_modules/${package}/package.json)
+      message(FATAL_ERROR "${viewer_dir}/node_modules lacks ${package}: run scripts/setup.sh "
+                          "(it runs npm ci in viewer/).")
+    endif()
+  endforeach()
   file(GLOB viewer_sources CONFIGURE_DEPENDS ${viewer_dir}/src/*.js)
   set(generated ${CMAKE_CURRENT_BINARY_DIR}/viewer_script.cpp)
   add_custom_command(

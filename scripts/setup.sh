@@ -13,8 +13,8 @@ packages=(
 )
 # The web viewer (docs/viewer.md): Node.js to bundle its script at build time (any Node.js with
 # npm on the PATH will do), Debian's Chromium for its browser test, and below its npm packages
-# (three, esbuild, playwright-core; never a browser download) from viewer/package-lock.json,
-# installed again only when the lock file changed.
+# (three, meshoptimizer, esbuild, playwright-core; never a browser download) from
+# viewer/package-lock.json, installed again only when the lock file changed.
 command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)
 
 missing=()

@@ -2,6 +2,7 @@
 // and its packed geometry inflated into three.js buffer geometries.
 import * as THREE from 'three';
 import { ConvexGeometry } from 'three/addons/geometries/ConvexGeometry.js';
+import { simplifiedIndices } from './lod.js';
 
 export function readPageData() {
   const element = document.getElementById('kaboum-data');
@@ -37,11 +38,29 @@ export async function unpackGeometry(pack) {
   });
 }
 
-// A buffer geometry per entry, made on first use: the mesh, or the convex hull of the points.
+// A buffer geometry per entry, made on first use: the mesh, or the convex hull of the points; and
+// a mesh's simplified geometry (lod.js), which shares the mesh's vertices.
 export class GeometryLibrary {
   constructor(entries) {
     this.entries = entries;
     this.cache = new Map();
+    this.simplifiedCache = new Map();
+  }
+
+  // The mesh of entry `index` simplified (lod.js): its own triangles over the mesh's vertices.
+  simplified(index) {
+    let geometry = this.simplifiedCache.get(index);
+    if (geometry) return geometry;
+    const original = this.geometry(index);
+    const entry = this.entries[index];
+    geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', original.getAttribute('position'));
+    geometry.setAttribute('normal', original.getAttribute('normal'));
+    geometry.setIndex(
+      new THREE.BufferAttribute(simplifiedIndices(entry.positions, entry.indices), 1),
+    );
+    this.simplifiedCache.set(index, geometry);
+    return geometry;
   }
 
   geometry(index) {

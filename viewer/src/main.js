@@ -4,6 +4,7 @@ import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { GeometryLibrary, matrixPose, poseMatrix, readPageData, unpackGeometry } from './data.js';
 import { RobotKinematics } from './kinematics.js';
+import { simplifierReady } from './lod.js';
 import { buildScene } from './scene.js';
 import { buildRun, sampleRobot } from './timeline.js';
 import { buildControls, listRun } from './ui.js';
@@ -21,6 +22,7 @@ function softwareRendering() {
 async function start() {
   const data = readPageData();
   const library = new GeometryLibrary(await unpackGeometry(data.geometry));
+  await simplifierReady;
   const controls = buildControls(data.title);
   const world = buildScene(data, library);
   const kinematics = data.robots.map((robot) => new RobotKinematics(robot));
@@ -102,6 +104,7 @@ async function start() {
     playing = on;
     if (playing && time >= run.duration) time = 0;
     if (software) renderer.setPixelRatio(window.devicePixelRatio * (playing ? 0.5 : 1));
+    world.simplify(playing);
     controls.play.textContent = playing ? 'Pause' : 'Play';
   }
 
@@ -173,6 +176,7 @@ async function start() {
     pause: () => setPlaying(false),
     setSpeed: (value) => (speed = Number(value)),
     frames: () => frames,
+    triangles: () => renderer.info.render.triangles,
     actions: () => run.actions.map(({ node, name, start, end }) => ({ node, name, start, end })),
     branches: () =>
       run.branches.map(({ node, test, value, time: at }) => ({ node, test, value, time: at })),

@@ -1,5 +1,6 @@
 // The three.js scene of a page: robots (a group per link holding its original shapes and its
-// convex pieces), objects (which follow the robot links holding them) and location regions.
+// convex pieces), objects (which follow the robot links holding them) and location regions; every
+// original mesh with its simplified geometry beside it, drawn while the plan plays (lod.js).
 import * as THREE from 'three';
 import { ConvexGeometry } from 'three/addons/geometries/ConvexGeometry.js';
 import { poseMatrix } from './data.js';
@@ -39,12 +40,17 @@ function shapeGeometry(shape, library) {
   return library.geometry(shape.mesh);
 }
 
-function addShapes(group, shapes, material, library) {
+// Adds the shapes to `group`; each mesh shape's three.js mesh, original geometry and simplified
+// geometry to `levels`.
+function addShapes(group, shapes, material, library, levels) {
   for (const shape of shapes) {
     const mesh = new THREE.Mesh(shapeGeometry(shape, library), material);
     mesh.matrixAutoUpdate = false;
     mesh.matrix.copy(poseMatrix(shape.origin));
     group.add(mesh);
+    if (shape.mesh !== undefined) {
+      levels.push({ mesh, original: mesh.geometry, simplified: library.simplified(shape.mesh) });
+    }
   }
 }
 
@@ -100,10 +106,11 @@ export function buildScene(data, library) {
   scene.add(sun);
 
   const looks = [];
+  const levels = [];
   const robotLinks = data.robots.map((robot) =>
     robot.links.map((link) => {
       const body = bodyGroup(link.name);
-      addShapes(body.original, link.shapes, materials.robot, library);
+      addShapes(body.original, link.shapes, materials.robot, library, levels);
       for (const part of link.pieces) {
         addPieces(body.pieces, part.entries, library, poseMatrix(part.origin));
       }
@@ -119,6 +126,7 @@ export function buildScene(data, library) {
       object.shapes,
       object.movable ? materials.movable : materials.fixed,
       library,
+      levels,
     );
     addPieces(body.pieces, object.pieces, library, null);
     body.group.matrix.copy(poseMatrix(object.pose));
@@ -140,6 +148,10 @@ export function buildScene(data, library) {
         look.original.visible = !on;
         look.pieces.visible = on;
       }
+    },
+    // The original meshes simplified (`true`, while playing) or as they are.
+    simplify(on) {
+      for (const level of levels) level.mesh.geometry = on ? level.simplified : level.original;
     },
   };
 }

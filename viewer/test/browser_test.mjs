@@ -2,8 +2,9 @@
 // solve --html` and `kaboum view` from the Pick and Place and Bartender examples, opened from
 // file:// URLs in headless Chromium. Fails on any console error or fetched resource, a blank
 // canvas, link poses that differ from kaboum's forward kinematics at the same times (`kaboum view
-// --link-poses-at`), or a way through the sensing branches, chosen in the page, whose actions and
-// duration differ from those `kaboum execute` gives it. Takes screenshots into OUT_DIR.
+// --link-poses-at`), simplified meshes not drawn while the plan plays or drawn when paused, or a
+// way through the sensing branches, chosen in the page, whose actions and duration differ from
+// those `kaboum execute` gives it. Takes screenshots into OUT_DIR.
 // Usage: node browser_test.mjs KABOUM SOURCE_DIR OUT_DIR  (exit 0 passed, 1 failed, 77 skipped)
 import { execFileSync } from 'node:child_process';
 import { mkdirSync, readFileSync, rmSync } from 'node:fs';
@@ -148,6 +149,27 @@ try {
   check(
     Math.hypot(...objects.before.map((v, i) => v - objects.after[i])) > 0.05,
     'pick-and-place: the block is carried away from where it started',
+  );
+  // The level of detail: simplified meshes while playing, the originals when paused.
+  const drawn = await page.evaluate(async () => {
+    const viewer = window.kaboum;
+    // Two animation frames: the viewer's next frame has been drawn after the change.
+    const nextFrame = () =>
+      new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(done)));
+    viewer.seek(0);
+    await nextFrame();
+    const paused = viewer.triangles();
+    viewer.play();
+    await nextFrame();
+    const playing = viewer.triangles();
+    viewer.pause();
+    await nextFrame();
+    return { paused, playing, pausedAgain: viewer.triangles() };
+  });
+  check(
+    drawn.playing > 0 && drawn.playing < 0.5 * drawn.paused && drawn.pausedAgain === drawn.paused,
+    `pick-and-place: ${drawn.playing} triangles drawn while playing, ${drawn.paused} when ` +
+      `paused (${drawn.pausedAgain} after playing)`,
   );
   await page.evaluate(() => window.kaboum.seek(window.kaboum.duration() * 0.4));
   await page.screenshot({ path: join(outDir, 'pick-and-place.png') });
