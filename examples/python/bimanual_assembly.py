@@ -34,7 +34,13 @@ if __name__ == "__main__":
     if solution.status != "solved":
         raise SystemExit(f"bimanual_assembly: {solution.message}")
     print(solution.plan_text())
-    for node in solution.nodes:
+    order, open_nodes = [], [solution.root]
+    while open_nodes:  # the plan's nodes from its root
+        index = open_nodes.pop()
+        if index >= 0 and index not in order:
+            order.append(index)
+            open_nodes += [solution.nodes[index].on_false, solution.nodes[index].next]
+    for node in (solution.nodes[index] for index in order):
         for action in node.geometry:
             joins = [f"{step.object} into {step.joined_to}" for step in action.steps
                      if step.kind == "join"]
