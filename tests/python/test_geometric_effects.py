@@ -53,6 +53,9 @@ def test_a_python_pick_is_carried_by_the_plan_and_verified(picked, pick_and_plac
     assert verification["passed"] and verification["colliding_paths"] == 0
     assert verification["paths"] == 3 + sum(1 for s in place.steps if len(s.path))
     assert '"procedure": "pyPick"' in json.dumps(plan["nodes"])
+    execution = picked.execute()
+    assert execution.reached_goal
+    assert [name for name, _, _ in execution.actions] == [pick.text, picked.nodes[pick.next].text]
 
 
 def reach_above_table(call):
