@@ -61,6 +61,45 @@ class World:
         joint_step: float = 0.5,
         tool_step: float = 1.0,
     ) -> PathCheck: ...
+    def sample_constraints(
+        self,
+        state: State,
+        constraints: Sequence[Constraint],
+        *,
+        samples: int = 1,
+        seed: int = 1,
+        tolerance: float = 1e-6,
+        attempts: int = 20,
+    ) -> list[State]: ...
+
+class Shape:
+    def __init__(
+        self,
+        kind: str,
+        point: npt.ArrayLike = (0.0, 0.0, 0.0),
+        direction: npt.ArrayLike = (0.0, 0.0, 1.0),
+        *,
+        robot: Optional[str] = None,
+        tool: Optional[str] = None,
+        frame: Optional[npt.ArrayLike] = None,
+    ) -> None: ...
+    @property
+    def kind(self) -> str: ...
+    @property
+    def point(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def direction(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def robot(self) -> Optional[str]: ...
+    @property
+    def tool(self) -> Optional[str]: ...
+
+class Constraint:
+    def __init__(self, type: str, first: Shape, second: Shape, distance: float = 0.0) -> None: ...
+    @property
+    def type(self) -> str: ...
+    @property
+    def distance(self) -> float: ...
 
 class PathCheck:
     @property
@@ -109,6 +148,53 @@ class AttachmentCall:
     def world(self) -> World: ...
     @property
     def state(self) -> State: ...
+    def transition(self) -> Transition: ...
+    def record(self, transition: Transition) -> float: ...
+
+class Transition:
+    def __init__(
+        self, state: State, *, planner: str = "rrtconnect", time_limit: float = 2.0, seed: int = 1
+    ) -> None: ...
+    def move(
+        self,
+        robot: str,
+        goal: npt.ArrayLike,
+        *,
+        tool: Optional[str] = None,
+        kind: Optional[str] = None,
+    ) -> MotionPlan: ...
+    def line(
+        self, robot: str, pose: npt.ArrayLike, *, tool: Optional[str] = None, kind: str = "approach"
+    ) -> MotionPlan: ...
+    def follow(
+        self,
+        robot: str,
+        path: npt.ArrayLike,
+        *,
+        tool: Optional[str] = None,
+        kind: Optional[str] = None,
+    ) -> Optional[str]: ...
+    def grasp(self, robot: str, object: str, *, tool: Optional[str] = None) -> None: ...
+    def release(self, robot: str, object: str) -> None: ...
+    def join(self, robot: str, object: str, joined_to: str) -> None: ...
+    @property
+    def start(self) -> State: ...
+    @property
+    def state(self) -> State: ...
+    @property
+    def steps(self) -> list[Step]: ...
+
+class Progress:
+    @property
+    def seconds(self) -> float: ...
+    @property
+    def expanded(self) -> int: ...
+    @property
+    def geometric_states(self) -> int: ...
+    @property
+    def motion_queries(self) -> int: ...
+    @property
+    def failures(self) -> int: ...
 
 Checker = Callable[[AttachmentCall], bool]
 Effect = Callable[[AttachmentCall], Union[None, bool, float, Sequence[float]]]
@@ -124,6 +210,8 @@ class Step:
     def path(self) -> Path: ...
     @property
     def object(self) -> Optional[str]: ...
+    @property
+    def joined_to(self) -> Optional[str]: ...
     @property
     def pose(self) -> Pose: ...
 
@@ -215,6 +303,9 @@ def solve(
     integrated: bool = False,
     verify: bool = True,
     attachments: Optional[Mapping[str, Union[Checker, Effect]]] = None,
+    geometric_effects: Sequence[str] = (),
+    progress: Optional[Callable[[Progress], Optional[bool]]] = None,
+    progress_period: float = 5.0,
 ) -> Solution: ...
 
 class Mesh:

@@ -9,6 +9,8 @@ PYBIND11_MODULE(kaboum, module) {
       "read the plan with its certified paths (docs/python.md).";
   kaboum::python::bindErrors(module);
   kaboum::python::bindWorld(module);
+  kaboum::python::bindTransition(module);
+  kaboum::python::bindConstraints(module);
   kaboum::python::bindSolve(module);
   kaboum::python::bindGeometry(module);
 }

@@ -2,12 +2,19 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "kaboum/core/error.hpp"
 
 namespace kaboum::python {
 
-PythonAttachments::PythonAttachments(std::shared_ptr<SceneWorld> scene, const py::dict& procedures)
-    : scene_(std::move(scene)) {
+PythonAttachments::PythonAttachments(std::shared_ptr<SceneWorld> scene, const py::dict& procedures,
+                                     std::vector<std::string> geometricEffects,
+                                     std::shared_ptr<std::atomic<bool>> cancel)
+    : scene_(std::move(scene)),
+      geometricEffects_(std::move(geometricEffects)),
+      cancel_(std::move(cancel)) {
   for (const auto& [name, procedure] : procedures) {
     const std::string key = py::str(name);
     if (!PyCallable_Check(procedure.ptr())) {
@@ -16,17 +23,35 @@ PythonAttachments::PythonAttachments(std::shared_ptr<SceneWorld> scene, const py
     }
     procedures_.emplace_back(key, py::reinterpret_borrow<py::object>(procedure));
   }
+  for (const std::string& name : geometricEffects_) {
+    if (std::none_of(procedures_.begin(), procedures_.end(),
+                     [&](const auto& procedure) { return procedure.first == name; })) {
+      throw InputError(
+          fmt::format("geometric_effects: '{}' is not one of the attachments given", name));
+    }
+  }
 }
 
-void PythonAttachments::registerProcedures(const tamp::GeometricAttachments& attachments,
+std::size_t PythonAttachments::stateId(const AttachmentCall& call) const {
+  const double id = call.reads.empty() ? -1.0 : call.reads[0].cast<double>();
+  if (!(id >= 0) || id != std::floor(id) || id >= static_cast<double>(attachments_->map().size())) {
+    throw std::invalid_argument(
+        "the module's first read value is no geometric state identifier: read the geometric "
+        "state fluent first, e.g. :reads ((geometry))");
+  }
+  return static_cast<std::size_t>(id);
+}
+
+void PythonAttachments::registerProcedures(tamp::GeometricAttachments& attachments,
                                            symbolic::ProcedureRegistry& registry) {
   attachments_ = &attachments;
   for (const auto& [name, procedure] : procedures_) {
     const py::object* callable = &procedure;
     const std::string* procedureName = &name;
-    registry.addChecker(name, [this, callable](const symbolic::AttachmentArgs& args) {
-      return check(*callable, args);
-    });
+    registry.addChecker(name,
+                        [this, callable, procedureName](const symbolic::AttachmentArgs& args) {
+                          return check(*procedureName, *callable, args);
+                        });
     registry.addApplicator(name,
                            [this, callable, procedureName](const symbolic::AttachmentArgs& args,
                                                            std::span<double> writes) {
@@ -35,7 +60,7 @@ void PythonAttachments::registerProcedures(const tamp::GeometricAttachments& att
   }
 }
 
-py::object PythonAttachments::call(const py::object& procedure,
+py::object PythonAttachments::call(const std::string& name, const py::object& procedure,
                                    const symbolic::AttachmentArgs& args) {
   py::tuple names(args.objects.size());
   for (std::size_t i = 0; i < args.objects.size(); ++i) {
@@ -46,19 +71,19 @@ py::object PythonAttachments::call(const py::object& procedure,
   }
   py::tuple reads(args.reads.size());
   for (std::size_t i = 0; i < args.reads.size(); ++i) reads[i] = py::float_(args.reads[i]);
-  return procedure(
-      AttachmentCall{scene_, attachments_, std::move(names), std::move(reads), args.sample});
+  return procedure(AttachmentCall{this, &name, std::move(names), std::move(reads), args.sample});
 }
 
-bool PythonAttachments::check(const py::object& procedure, const symbolic::AttachmentArgs& args) {
+bool PythonAttachments::check(const std::string& name, const py::object& procedure,
+                              const symbolic::AttachmentArgs& args) {
   py::gil_scoped_acquire locked;
-  return py::bool_(call(procedure, args));
+  return py::bool_(call(name, procedure, args));
 }
 
 bool PythonAttachments::apply(const std::string& name, const py::object& procedure,
                               const symbolic::AttachmentArgs& args, std::span<double> writes) {
   py::gil_scoped_acquire locked;
-  const py::object result = call(procedure, args);
+  const py::object result = call(name, procedure, args);
   if (result.is_none() || (py::isinstance<py::bool_>(result) && !result.cast<bool>())) {
     return false;
   }

@@ -7,6 +7,7 @@
 
 #include "kaboum/core/error.hpp"
 #include "kaboum/core/text.hpp"
+#include "kaboum/motion/motion_group.hpp"
 
 namespace kaboum::python {
 
@@ -121,6 +122,34 @@ py::array_t<double> vectorArray(std::span<const double> values) {
   py::array_t<double> array(static_cast<py::ssize_t>(values.size()));
   std::copy(values.begin(), values.end(), array.mutable_data());
   return array;
+}
+
+std::vector<double> vectorFrom(const Array& values) {
+  if (values.ndim() != 1) throw std::invalid_argument("expected a one-dimensional array");
+  return {values.data(), values.data() + values.size()};
+}
+
+MotionPlan motionPlan(const motion::MotionResult& result, std::size_t joints) {
+  return {toString(result.status), result.message, waypointsArray(result.path, joints),
+          result.statistics.sweepEpsilon, result.statistics.totalSeconds};
+}
+
+std::optional<std::string> uncertifiedSegment(const world::World& world,
+                                              const world::GeometricState& state, std::size_t robot,
+                                              const motion::Waypoints& path) {
+  if (path.empty()) throw std::invalid_argument("a path has at least one waypoint");
+  const motion::MotionGroup group(world, state, {robot});
+  const motion::QueryEpsilon epsilon =
+      motion::sweepEpsilonForEnds(group, path.front(), path.back(), {});
+  if (epsilon.status != PlannerStatus::Solved) return epsilon.problem;
+  const std::unique_ptr<motion::MotionValidator> validator =
+      motion::motionValidator(group, epsilon.epsilon, nullptr);
+  for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+    if (!validator->isValid(path[i], path[i + 1])) {
+      return fmt::format("segment {} (waypoints {} to {}) is not certified free", i, i, i + 1);
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace kaboum::python

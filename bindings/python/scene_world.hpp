@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "kaboum/motion/motion_planner.hpp"
 #include "kaboum/motion/tool_kinematics.hpp"
@@ -76,5 +77,26 @@ py::array_t<double> waypointsArray(const motion::Waypoints& path, std::size_t jo
 motion::Waypoints waypointsFromArray(
     const py::array_t<double, py::array::c_style | py::array::forcecast>& path);
 py::array_t<double> vectorArray(std::span<const double> values);
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+// A one-dimensional array as a vector (ValueError otherwise).
+std::vector<double> vectorFrom(const Array& values);
+
+// A certified motion of one robot (motion::planMotion, motion::planCartesian), as Python receives
+// it.
+struct MotionPlan {
+  std::string status;
+  std::string message;
+  py::array_t<double> path;
+  double sweepEpsilon = 0;
+  double seconds = 0;
+};
+MotionPlan motionPlan(const motion::MotionResult& result, std::size_t joints);
+
+// Why the swept volumes of `path`'s segments (robot `robot` moving in `state`, what it holds with
+// it) are not certified free, as the motion planner certifies them (thesis §4.5), or nullopt when
+// they all are. Call without the GIL.
+std::optional<std::string> uncertifiedSegment(const world::World& world,
+                                              const world::GeometricState& state, std::size_t robot,
+                                              const motion::Waypoints& path);
 
 }  // namespace kaboum::python

@@ -20,20 +20,11 @@
 #include "page_cli.hpp"
 #include "python_attachments.hpp"
 #include "scene_world.hpp"
+#include "transition.hpp"
 
 namespace kaboum::python {
 
 namespace {
-
-// A plan's step of geometry with the scene's names.
-struct StepView {
-  std::string kind;
-  std::string robot;
-  std::string tool;
-  py::array_t<double> path;
-  std::optional<std::string> object;
-  py::array_t<double> pose;
-};
 
 struct ActionGeometryView {
   std::string procedure;
@@ -63,20 +54,59 @@ struct Solution {
   std::vector<PlanNodeView> nodes;
 };
 
-py::object pythonValue(const nlohmann::json& json) {
-  return py::module_::import("json").attr("loads")(json.dump());
+// The figures `kaboum solve` prints on stderr every few seconds of a long solve.
+struct SolveProgress {
+  double seconds = 0;
+  std::size_t expanded = 0;
+  std::size_t geometricStates = 0;
+  std::size_t motionQueries = 0;
+  std::size_t failures = 0;
+};
+
+// The seed of a call's transition: the solve's, with the procedure, its arguments, read values
+// and sample, so that each call draws its own motions and the same call the same ones.
+std::uint64_t transitionSeed(const AttachmentCall& call) {
+  std::vector<std::uint32_t> parts;
+  const auto add = [&](std::uint64_t value) {
+    parts.push_back(static_cast<std::uint32_t>(value));
+    parts.push_back(static_cast<std::uint32_t>(value >> 32));
+  };
+  add(call.owner->attachments().options().seed);
+  add(std::hash<std::string>{}(*call.procedure));
+  for (const py::handle name : call.args) add(std::hash<std::string>{}(name.cast<std::string>()));
+  for (const py::handle value : call.reads) add(std::hash<double>{}(value.cast<double>()));
+  add(call.sample);
+  std::seed_seq sequence(parts.begin(), parts.end());
+  std::uint64_t seed = 0;
+  sequence.generate(reinterpret_cast<std::uint32_t*>(&seed),
+                    reinterpret_cast<std::uint32_t*>(&seed) + 2);
+  return seed;
 }
 
-StepView stepView(const world::World& world, const tamp::GeometricStep& step) {
-  const io::RobotSpec& robot = world.description().robots[step.robot];
-  const bool gripper = step.kind == tamp::GeometricStep::Kind::Grasp ||
-                       step.kind == tamp::GeometricStep::Kind::Release;
-  return {tamp::toString(step.kind),
-          robot.name,
-          robot.tools[step.tool].name,
-          waypointsArray(step.path, world.robots()[step.robot].home.size()),
-          gripper ? std::optional(world.description().objects[step.object].name) : std::nullopt,
-          poseArray(step.pose)};
+// Records `transition` as the geometry of geometric effect `call`; the identifier of the state it
+// reaches.
+double record(const AttachmentCall& call, const Transition& transition) {
+  PythonAttachments& owner = *call.owner;
+  const std::vector<std::string>& geometric = owner.geometricEffects();
+  if (std::find(geometric.begin(), geometric.end(), *call.procedure) == geometric.end()) {
+    throw std::invalid_argument(
+        fmt::format("attachment '{}' records geometry: name it in kaboum.solve's geometric_effects",
+                    *call.procedure));
+  }
+  tamp::GeometricAttachments& attachments = owner.attachments();
+  const std::size_t from = owner.stateId(call);
+  if (transition.scene() != owner.scene() ||
+      !(transition.from() == attachments.map().state(from))) {
+    throw std::invalid_argument(fmt::format(
+        "attachment '{}': the transition does not start in the call's state", *call.procedure));
+  }
+  tamp::ActionGeometry geometry{*call.procedure, {}, from, 0, transition.steps()};
+  for (const py::handle name : call.args) geometry.arguments.push_back(name.cast<std::string>());
+  return static_cast<double>(attachments.record(std::move(geometry), transition.state()));
+}
+
+py::object pythonValue(const nlohmann::json& json) {
+  return py::module_::import("json").attr("loads")(json.dump());
 }
 
 std::vector<PlanNodeView> nodeViews(tamp::Solver& solver, const tamp::SolveResult& result) {
@@ -135,7 +165,10 @@ std::unique_ptr<Solution> solve(const std::shared_ptr<SceneWorld>& scene, const 
                                 std::size_t maxWorlds, std::uint64_t seed, double motionTimeLimit,
                                 const std::string& planner, const std::string& placement,
                                 int graspSamples, std::uint32_t samples, bool integrated,
-                                bool verify, const std::optional<py::dict>& attachments) {
+                                bool verify, const std::optional<py::dict>& attachments,
+                                const std::vector<std::string>& geometricEffects,
+                                const std::optional<py::function>& progress,
+                                double progressPeriod) {
   tamp::SolveOptions options;
   options.search.mode = member("search", search, symbolic::contingentSearchModes());
   options.search.heuristic = member("heuristic", heuristic, symbolic::heuristicNames());
@@ -143,6 +176,7 @@ std::unique_ptr<Solution> solve(const std::shared_ptr<SceneWorld>& scene, const 
   requirePositive("memory_limit", memoryLimit);
   requirePositive("motion_time_limit", motionTimeLimit);
   requirePositive("grasp_samples", graspSamples);
+  requirePositive("progress_period", progressPeriod);
   if (samples < 1 || samples > 1000) {
     throw InputError(fmt::format("samples: expected 1 to 1000, got {}", samples));
   }
@@ -161,24 +195,41 @@ std::unique_ptr<Solution> solve(const std::shared_ptr<SceneWorld>& scene, const 
   auto solution = std::make_unique<Solution>();
   solution->scene = scene;
   solution->sources = {domain, problem, scene->file()};
-  if (attachments) {
-    solution->attachments = std::make_shared<PythonAttachments>(scene, *attachments);
+  const auto cancel = std::make_shared<std::atomic<bool>>(false);
+  if (attachments || !geometricEffects.empty()) {
+    solution->attachments = std::make_shared<PythonAttachments>(
+        scene, attachments.value_or(py::dict()), geometricEffects, cancel);
     options.registerProcedures = [python = solution->attachments.get()](
                                      tamp::GeometricAttachments& geometric,
                                      symbolic::ProcedureRegistry& registry) {
       python->registerProcedures(geometric, registry);
     };
+    options.geometricEffects = geometricEffects;
   }
-  std::atomic<bool> cancel = false;
-  options.search.limits.cancel = &cancel;
-  options.geometry.motion.cancel = &cancel;
+  if (progress) {
+    // Called on the solve's thread while the solver exists; the GIL only for the call. False
+    // cancels the solve.
+    options.search.progress = [&solution, &progress,
+                               cancel](const symbolic::ContingentStatistics& searched) {
+      const tamp::GeometricAttachments& geometric = solution->solver->attachments();
+      const SolveProgress figures{searched.seconds, searched.expanded, geometric.map().size(),
+                                  geometric.statistics().motionQueries,
+                                  geometric.statistics().failures};
+      py::gil_scoped_acquire locked;
+      const py::object answer = (*progress)(figures);
+      if (py::isinstance<py::bool_>(answer) && !answer.cast<bool>()) *cancel = true;
+    };
+    options.search.progressPeriod = progressPeriod;
+  }
+  options.search.limits.cancel = cancel.get();
+  options.geometry.motion.cancel = cancel.get();
   runCancellable(
       [&] {
         solution->solver = std::make_unique<tamp::Solver>(
             scene->world(), symbolic::loadContingent(domain, problem), options);
         solution->result = solution->solver->solve();
       },
-      cancel);
+      *cancel);
   solution->nodes = nodeViews(*solution->solver, solution->result);
   return solution;
 }
@@ -239,35 +290,36 @@ void bindSolve(py::module_& module) {
       .def_readonly("sample", &AttachmentCall::sample,
                     "Which geometric sample of this call an effect computes (solve's samples).")
       .def_property_readonly(
-          "world", [](const AttachmentCall& self) { return self.scene; }, "The scene.")
+          "world", [](const AttachmentCall& self) { return self.owner->scene(); }, "The scene.")
       .def_property_readonly(
           "state",
           [](const AttachmentCall& self) {
-            const double id = self.reads.empty() ? -1.0 : self.reads[0].cast<double>();
-            if (!(id >= 0) || id != std::floor(id) ||
-                id >= static_cast<double>(self.attachments->map().size())) {
-              throw std::invalid_argument(
-                  "the module's first read value is no geometric state identifier: read the "
-                  "geometric state fluent first, e.g. :reads ((geometry))");
-            }
-            return SceneState{self.scene,
-                              self.attachments->map().state(static_cast<std::size_t>(id))};
+            return SceneState{self.owner->scene(),
+                              self.owner->attachments().map().state(self.owner->stateId(self))};
           },
-          "The geometric state whose identifier is the first read value.");
-  py::class_<StepView>(module, "Step",
-                       "One step of an action's geometry, in execution order: a certified "
-                       "motion of one robot, or a gripper event.")
-      .def_readonly("kind", &StepView::kind,
-                    "'transit', 'transfer', 'approach', 'retreat', 'grasp' or 'release'.")
-      .def_readonly("robot", &StepView::robot)
-      .def_readonly("tool", &StepView::tool)
-      .def_readonly("path", &StepView::path,
-                    "Motions: waypoints x the robot's joints, every segment certified; else "
-                    "empty.")
-      .def_readonly("object", &StepView::object, "Grasp and release: the object; else None.")
-      .def_readonly("pose", &StepView::pose,
-                    "Grasp: the object frame in the tool link frame; release: the object's world "
-                    "pose (4x4).");
+          "The geometric state whose identifier is the first read value.")
+      .def(
+          "transition",
+          [](const AttachmentCall& self) {
+            const tamp::GeometricAttachments& attachments = self.owner->attachments();
+            return Transition(
+                self.owner->scene(), attachments.map().state(self.owner->stateId(self)),
+                attachments.options().motion, transitionSeed(self), self.owner->cancel());
+          },
+          "A Transition from the call's state whose motions use the solve's planner and "
+          "motion_time_limit, stop on Ctrl-C, and are seeded by the solve's seed and the call.")
+      .def("record", &record, py::arg("transition"),
+           "Records `transition` (from the call's state) as this geometric effect's geometry, "
+           "which the plan then carries and verifies, and returns the identifier of the state "
+           "it reaches: the value of the geometric state fluent the effect writes. ValueError "
+           "unless the procedure is in solve's geometric_effects.");
+  py::class_<SolveProgress>(module, "Progress",
+                            "The figures of a long solve, as `kaboum solve` prints them.")
+      .def_readonly("seconds", &SolveProgress::seconds, "Seconds of search so far.")
+      .def_readonly("expanded", &SolveProgress::expanded, "Knowledge states expanded.")
+      .def_readonly("geometric_states", &SolveProgress::geometricStates)
+      .def_readonly("motion_queries", &SolveProgress::motionQueries)
+      .def_readonly("failures", &SolveProgress::failures, "Failed geometric calls.");
   py::class_<ActionGeometryView>(module, "ActionGeometry",
                                  "The geometry of one geometric effect of a plan action.")
       .def_readonly("procedure", &ActionGeometryView::procedure, "'pickUp', 'putDown', …")
@@ -412,10 +464,15 @@ void bindSolve(py::module_& module) {
              py::arg("planner") = "rrtconnect", py::arg("placement") = "random",
              py::arg("grasp_samples") = 16, py::arg("samples") = 1, py::arg("integrated") = false,
              py::arg("verify") = true, py::arg("attachments") = py::none(),
+             py::arg("geometric_effects") = std::vector<std::string>{},
+             py::arg("progress") = py::none(), py::arg("progress_period") = 5.0,
              "Solves the PDDL `domain` and `problem` in `world` as `kaboum solve` does, with the "
              "same options (time_limit and motion_time_limit in seconds, memory_limit in MB). "
              "`attachments` maps procedure names of the domain's :modules to Python callables "
-             "(docs/python.md). Releases the GIL; Ctrl-C cancels the search and raises "
+             "(docs/python.md); `geometric_effects` names those that record geometry "
+             "(AttachmentCall.record) and write the geometric state fluent. `progress(figures)` "
+             "is called every `progress_period` seconds of search with a Progress (False "
+             "cancels). Releases the GIL; Ctrl-C cancels the search and raises "
              "KeyboardInterrupt. Raises InputError for bad files or options.");
 }
 

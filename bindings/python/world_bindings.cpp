@@ -15,13 +15,6 @@ namespace kaboum::python {
 
 namespace {
 
-using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
-
-std::vector<double> vectorFrom(const Array& values) {
-  if (values.ndim() != 1) throw std::invalid_argument("expected a one-dimensional array");
-  return {values.data(), values.data() + values.size()};
-}
-
 // The scene object held, and where the state's robot holds it, by name.
 std::optional<std::string> holderName(const SceneState& self, const std::string& object) {
   const std::optional<std::size_t> holder = tamp::holderOf(self.state, self.scene->object(object));
@@ -53,15 +46,6 @@ std::optional<std::string> firstCollision(const SceneWorld& self, const SceneSta
   return self.world().describe(*collision);
 }
 
-// A certified motion of one robot (motion::planMotion), as Python receives it.
-struct MotionPlan {
-  std::string status;
-  std::string message;
-  py::array_t<double> path;
-  double sweepEpsilon = 0;
-  double seconds = 0;
-};
-
 MotionPlan planMotion(const SceneWorld& self, const SceneState& state, const std::string& robot,
                       const Array& goal, const std::string& planner, double timeLimit,
                       std::uint64_t seed) {
@@ -77,30 +61,15 @@ MotionPlan planMotion(const SceneWorld& self, const SceneState& state, const std
     const motion::MotionGroup group(self.world(), state.state, {index});
     result = motion::planMotion(group, group.configuration(state.state), target, options);
   }
-  return {toString(result.status), result.message,
-          waypointsArray(result.path, state.state.robots[index].configuration.size()),
-          result.statistics.sweepEpsilon, result.statistics.totalSeconds};
+  return motionPlan(result, state.state.robots[index].configuration.size());
 }
 
-// Why the swept volumes of `path`'s segments (robot `robot` moving in `state`) are not certified
-// free, as the motion planner certifies them (thesis §4.5), or nullopt when they all are.
 std::optional<std::string> sweptCollision(const SceneWorld& self, const SceneState& state,
                                           const std::string& robot, const Array& path) {
   const motion::Waypoints waypoints = waypointsFromArray(path);
-  if (waypoints.empty()) throw std::invalid_argument("a path has at least one waypoint");
+  const std::size_t index = self.robot(robot);
   py::gil_scoped_release unlocked;
-  const motion::MotionGroup group(self.world(), state.state, {self.robot(robot)});
-  const motion::QueryEpsilon epsilon =
-      motion::sweepEpsilonForEnds(group, waypoints.front(), waypoints.back(), {});
-  if (epsilon.status != PlannerStatus::Solved) return epsilon.problem;
-  const std::unique_ptr<motion::MotionValidator> validator =
-      motion::motionValidator(group, epsilon.epsilon, nullptr);
-  for (std::size_t i = 0; i + 1 < waypoints.size(); ++i) {
-    if (!validator->isValid(waypoints[i], waypoints[i + 1])) {
-      return fmt::format("segment {} (waypoints {} to {}) is not certified free", i, i, i + 1);
-    }
-  }
-  return std::nullopt;
+  return uncertifiedSegment(self.world(), state.state, index, waypoints);
 }
 
 // The independent check of a motion (verify::verifyPath, docs/verify.md), as Python receives it.

@@ -12,6 +12,7 @@ SCRIPTS = pathlib.Path(__file__).resolve().parents[2] / "examples" / "python"
 @pytest.mark.parametrize("script", [
     "pick_and_place.py", "bartender.py", "tables.py", "move_and_stack.py",
     "remove_objects.py", "stacked.py", "circular_rearrange.py", "python_attachment.py",
+    "python_pick.py",
 ])
 def test_the_example_script_solves_and_verifies(script, tmp_path):
     command = [sys.executable, str(SCRIPTS / script), "--hulls"]

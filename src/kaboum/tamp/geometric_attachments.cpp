@@ -284,11 +284,16 @@ void GeometricAttachments::record(const motion::MotionResult& result) {
   statistics_.checks += query.checks;
 }
 
+std::size_t GeometricAttachments::record(ActionGeometry geometry, const GeometricState& reached) {
+  geometry.to = map_.intern(reached);
+  const std::size_t to = geometry.to;
+  transitions_.try_emplace({geometry.from, to}, std::move(geometry));
+  return to;
+}
+
 bool GeometricAttachments::finish(ActionGeometry geometry, const GeometricState& reached,
                                   std::span<double> writes) {
-  geometry.to = map_.intern(reached);
-  writes[0] = static_cast<double>(geometry.to);
-  transitions_.try_emplace({geometry.from, geometry.to}, std::move(geometry));
+  writes[0] = static_cast<double>(record(std::move(geometry), reached));
   return true;
 }
 

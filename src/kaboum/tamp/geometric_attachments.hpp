@@ -145,6 +145,10 @@ class GeometricAttachments {
   [[nodiscard]] const TampOptions& options() const { return options_; }
   // The recorded geometry of an effect from state `from` to state `to`, if one was applied.
   [[nodiscard]] const ActionGeometry* transition(std::size_t from, std::size_t to) const;
+  // Records the geometry of an effect computed elsewhere (the Python API's, docs/python.md), from
+  // state geometry.from to `reached`, as the effects here record theirs; returns the identifier
+  // of `reached`.
+  std::size_t record(ActionGeometry geometry, const GeometricState& reached);
   [[nodiscard]] const GeometricStatistics& statistics() const { return statistics_; }
 
  private:

@@ -121,8 +121,9 @@ Solver::Solver(const World& world, ContingentProblem problem, SolveOptions optio
   attachments_->registerProcedures(registry);
   if (options_.registerProcedures) options_.registerProcedures(*attachments_, registry);
   for (const Module& module : problem_.domain.modules) {
-    if (!isGeometric(module)) continue;
-    const bool effect = GeometricAttachments::isGeometricEffect(module.procedure);
+    const bool recorded = isRecordedEffect(module);
+    if (!isGeometric(module) && !recorded) continue;
+    const bool effect = recorded || GeometricAttachments::isGeometricEffect(module.procedure);
     if (effect != (module.kind == Module::Kind::EffectApplicator)) {
       throw InputError(locate(problem_.domain.file,
                               fmt::format("module '{}': '{}' is {}", module.name, module.procedure,
@@ -139,7 +140,7 @@ Solver::Solver(const World& world, ContingentProblem problem, SolveOptions optio
                       module.name, module.procedure),
           module.pos.line, module.pos.column));
     }
-    if (module.paramTypes.size() != GeometricAttachments::arity(module.procedure)) {
+    if (!recorded && module.paramTypes.size() != GeometricAttachments::arity(module.procedure)) {
       throw InputError(
           locate(problem_.domain.file,
                  fmt::format("module '{}': '{}' takes {} argument(s), not {}", module.name,
@@ -154,6 +155,12 @@ Solver::Solver(const World& world, ContingentProblem problem, SolveOptions optio
 
 Solver::~Solver() = default;
 
+bool Solver::isRecordedEffect(const Module& module) const {
+  const std::vector<std::string>& names = options_.geometricEffects;
+  return module.library.empty() &&
+         std::find(names.begin(), names.end(), module.procedure) != names.end();
+}
+
 // Every ground call of a geometric attachment: its arguments name scene entities of the right
 // kind; the fluents geometric effects write start at identifier 0 (the world's initial state).
 void Solver::checkCalls() {
@@ -161,8 +168,9 @@ void Solver::checkCalls() {
   const std::string& scene = world_->description().settings.source.file;
   for (const GroundModuleCall& call : ground.moduleCalls) {
     const Module& module = problem_.domain.modules[static_cast<std::size_t>(call.module)];
-    if (!isGeometric(module)) continue;
-    for (std::size_t i = 0; i < call.args.size(); ++i) {
+    const bool recorded = isRecordedEffect(module);
+    if (!isGeometric(module) && !recorded) continue;
+    for (std::size_t i = 0; !recorded && i < call.args.size(); ++i) {
       const std::string& name = ground.objectNames[static_cast<std::size_t>(call.args[i])];
       if (!attachments_->namesSceneEntity(name)) {
         throw InputError(locate(problem_.problem.file,
@@ -171,7 +179,7 @@ void Solver::checkCalls() {
                                             name, i + 1, module.name, module.procedure, scene)));
       }
     }
-    if (!GeometricAttachments::isGeometricEffect(module.procedure)) continue;
+    if (!recorded && !GeometricAttachments::isGeometricEffect(module.procedure)) continue;
     const FluentId fluent = call.writes.front();
     if (std::find(geometricFluents_.begin(), geometricFluents_.end(), fluent) ==
         geometricFluents_.end()) {

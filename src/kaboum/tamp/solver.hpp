@@ -28,6 +28,9 @@ struct SolveOptions {
   // Registers further procedures (the Python API's attachments, docs/python.md) after the
   // geometric attachments, whose map gives them the geometric state behind an identifier.
   std::function<void(GeometricAttachments&, symbolic::ProcedureRegistry&)> registerProcedures;
+  // Procedures registered there that are geometric effects too: each writes the identifier that
+  // GeometricAttachments::record gave the state it reached, its geometry recorded there.
+  std::vector<std::string> geometricEffects;
 };
 
 // One motion of a plan replayed on the original meshes.
@@ -97,6 +100,8 @@ class Solver {
   }
 
  private:
+  // Whether module `module` is bound to one of options_.geometricEffects.
+  [[nodiscard]] bool isRecordedEffect(const symbolic::Module& module) const;
   void checkCalls();
   // The geometry of every action node, replaying the plan from the initial knowledge; false with
   // `message` when an action's geometric state is not the same in every world it runs in.
