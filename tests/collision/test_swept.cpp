@@ -241,14 +241,23 @@ TEST(RobotSweep, PartsNoMovingJointMovesApartAreCheckedAtTheStart) {
   }
 }
 
+// Two KR5s facing each other 0.9 m apart.
+struct FacingKr5s {
+  RobotModel model = loadUrdf(test::kKr5);
+  RobotCollisionModel left = kaboum::testing::robotCollisionModel(model);
+  RobotCollisionModel right = kaboum::testing::robotCollisionModel(model);
+  FacingKr5s() {
+    right.setBasePose(
+        Pose(Eigen::Translation3d(0.9, 0, 0) * Eigen::AngleAxisd(3.14159, Vec3::UnitY())));
+  }
+};
+
 // The part steps' culling gives the verdict of comparing every swept piece of one robot with every
 // swept piece of the other.
 TEST(SweptVolumes, CullingGivesTheVerdictOfEveryPiecePair) {
-  const RobotModel model = loadUrdf(test::kKr5);
-  const Pose offset(Eigen::Translation3d(0.9, 0, 0) * Eigen::AngleAxisd(3.14159, Vec3::UnitY()));
-  RobotCollisionModel left = kaboum::testing::robotCollisionModel(model);
-  RobotCollisionModel right = kaboum::testing::robotCollisionModel(model);
-  right.setBasePose(offset);
+  FacingKr5s pair;
+  const RobotModel& model = pair.model;
+  RobotCollisionModel &left = pair.left, &right = pair.right;
   RobotSweep sweepLeft(left), sweepRight(right), allLeft(left), allRight(right);
   std::mt19937_64 rng(31);
   const double epsilon = 0.005, reach = 2 * epsilon;
@@ -294,12 +303,10 @@ TEST(RobotSweep, SelfCollisionFollowsTheFilter) {
 }
 
 TEST(SweptVolumes, DenseSamplingNeverFindsACollisionTheSweepsCalledFree) {
-  // Two KR5s facing each other 0.9 m apart; the volumes are compared regardless of timing.
-  const RobotModel model = loadUrdf(test::kKr5);
-  const Pose offset(Eigen::Translation3d(0.9, 0, 0) * Eigen::AngleAxisd(3.14159, Vec3::UnitY()));
-  RobotCollisionModel left = kaboum::testing::robotCollisionModel(model);
-  RobotCollisionModel right = kaboum::testing::robotCollisionModel(model);
-  right.setBasePose(offset);
+  // The volumes are compared regardless of timing.
+  FacingKr5s pair;
+  const RobotModel& model = pair.model;
+  RobotCollisionModel &left = pair.left, &right = pair.right;
   RobotSweep sweepLeft(left), sweepRight(right);
   std::mt19937_64 rng(12);
   std::vector<Pose> a(model.links().size()), b(model.links().size());
