@@ -1,9 +1,8 @@
 """The Bimanual Assembly (examples/bimanual-assembly): two Comau arms assemble a gearbox from two
-bearings, a pipe and a tree. Its solve takes minutes (depth-first search, 136 s on a loaded 2-core
-machine, README there) and the verification of its paths on the original meshes far longer, so
-this script solves within a time limit, reports the search's progress on stderr through the
-progress callback, and may skip the verification. It decomposes the meshes (convex hulls are too
-coarse for the fits) through the decomposition cache, and is not run by the tests."""
+bearings, a pipe and a tree. Depth-first search solves it in seconds (README there); the
+verification of its paths on the original meshes takes minutes, so it may be skipped. The search's
+progress goes to stderr through the progress callback. The meshes are decomposed (convex hulls are
+too coarse for the fits) through the decomposition cache ($KABOUM_CACHE_DIR, else the user's)."""
 import argparse
 import pathlib
 import sys
@@ -24,7 +23,7 @@ if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--time-limit", type=float, default=1200, help="seconds (default 1200)")
     parser.add_argument("--no-verify", action="store_true",
-                        help="skip replaying the paths on the original meshes (tens of minutes)")
+                        help="skip replaying the paths on the original meshes (minutes)")
     parser.add_argument("--plan-out", metavar="FILE", help="write the plan file (JSON)")
     args = parser.parse_args()
     world = kaboum.World(str(HERE / "scene.yaml"))

@@ -23,3 +23,15 @@ def test_the_example_script_solves_and_verifies(script, tmp_path):
     if script != "python_attachment.py":
         assert (tmp_path / "plan.json").exists()
     assert "(" in run.stdout  # the plan tree
+
+
+def test_the_bimanual_assembly_solves_with_its_parts_joined(tmp_path):
+    """The whole scenario on its decomposed meshes (the C++ tests' decomposition cache), without
+    the verification on the original meshes, which takes minutes."""
+    command = [sys.executable, str(SCRIPTS / "bimanual_assembly.py"), "--no-verify",
+               "--time-limit", "300", "--plan-out", str(tmp_path / "plan.json")]
+    run = subprocess.run(command, capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    assert "(assemblepipetree" in run.stdout
+    assert "joined" in run.stdout
+    assert (tmp_path / "plan.json").exists()
