@@ -35,6 +35,10 @@ void addSceneLoadOptions(CLI::App& command, SceneLoadOptions& options) {
       "--epsilon", [&options](const std::string& text) { options.epsilon = text; },
       "Approximation bound of the bounding convex decomposition, overriding the "
       "scene's: metres (0.005) or a percentage of each body's diagonal (1%)");
+  command.add_option_function<std::uint64_t>(
+      "--placement-seed", [&options](std::uint64_t seed) { options.placementSeed = seed; },
+      "Seed of the objects the scene places at random (place_in), overriding the scene's "
+      "placement_seed");
 }
 
 void applyEpsilonOption(const std::string& text, io::SceneSettings& settings) {
@@ -73,7 +77,18 @@ world::World loadWorld(const std::string& sceneFile, const SceneLoadOptions& opt
   worldOptions.pieces = options.pieces;
   io::SceneDescription scene = io::readSceneFile(sceneFile);
   if (options.epsilon) applyEpsilonOption(*options.epsilon, scene.settings);
+  if (options.placementSeed) scene.settings.placementSeed = *options.placementSeed;
   return world::World(std::move(scene), worldOptions);
+}
+
+void adoptPlacementSeed(const nlohmann::json& plan, const std::string& planFile,
+                        SceneLoadOptions& options) {
+  if (options.placementSeed || !plan.is_object() || !plan.contains("placement_seed")) return;
+  const nlohmann::json& seed = plan["placement_seed"];
+  if (!seed.is_number_unsigned()) {
+    throw InputError(locate(planFile, "placement_seed: expected a non-negative integer"));
+  }
+  options.placementSeed = seed.get<std::uint64_t>();
 }
 
 void addVerifyStepOptions(CLI::App& command, VerifyStepOptions& options) {

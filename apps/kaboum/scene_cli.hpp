@@ -4,7 +4,9 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
@@ -19,10 +21,11 @@ struct SceneLoadOptions {
   std::string cacheDirectory;          // empty: defaultCacheDirectory()
   unsigned threads = 0;                // decomposing meshes; 0: the hardware's
   std::optional<std::string> epsilon;  // --epsilon as given (metres or N%); none: the scene's
+  std::optional<std::uint64_t> placementSeed;  // --placement-seed; none: the scene's
   world::MeshPieces pieces = world::MeshPieces::Decomposition;  // the Python API may ask for hulls
 };
 
-// Adds --no-cache, --cache-dir DIR, --threads N and --epsilon E to `command`.
+// Adds --no-cache, --cache-dir DIR, --threads N, --epsilon E and --placement-seed N to `command`.
 void addSceneLoadOptions(CLI::App& command, SceneLoadOptions& options);
 
 // $KABOUM_CACHE_DIR, else $XDG_CACHE_HOME/kaboum, else $HOME/.cache/kaboum (variables that are
@@ -40,9 +43,16 @@ std::optional<std::filesystem::path> cacheDirectory(const SceneLoadOptions& opti
 void applyEpsilonOption(const std::string& text, io::SceneSettings& settings);
 
 // Reads the scene file and builds its World with decompositions cached as `options` say, on
-// `options.threads` threads (WorldOptions::threads), at the ε of --epsilon when given. Throws
+// `options.threads` threads (WorldOptions::threads), at the ε of --epsilon when given, the objects
+// with place_in placed by --placement-seed when given. Throws
 // InputError for a bad file, a failed load-time check or a cache directory that cannot be created.
 world::World loadWorld(const std::string& sceneFile, const SceneLoadOptions& options);
+
+// The placement seed of a plan file's scene (its `placement_seed`), unless --placement-seed gave
+// one: the layout the plan was made on. Throws InputError naming `planFile` for a value that is
+// not a non-negative integer.
+void adoptPlacementSeed(const nlohmann::json& plan, const std::string& planFile,
+                        SceneLoadOptions& options);
 
 // How densely verify-path and verify-plan sample a path (docs/verify.md), in the user's units.
 struct VerifyStepOptions {

@@ -110,7 +110,9 @@ int run(const Options& options) {
   const nlohmann::json planJson = io::readJsonFile(options.plan);
   const nlohmann::json worldStateJson =
       options.worldState.empty() ? nlohmann::json() : io::readJsonFile(options.worldState);
-  const world::World world = loadWorld(options.scene, options.load);
+  SceneLoadOptions load = options.load;
+  adoptPlacementSeed(planJson, options.plan, load);
+  const world::World world = loadWorld(options.scene, load);
   tamp::GeometricAttachments attachments(world);
   symbolic::ProcedureRegistry registry;
   attachments.registerProcedures(registry);

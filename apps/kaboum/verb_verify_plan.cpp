@@ -112,7 +112,9 @@ int run(const Options& options) {
   printWarnings(problem.domain.warnings);
   printWarnings(problem.problem.warnings);
   const nlohmann::json plan = io::readJsonFile(options.plan);
-  const world::World world = loadWorld(options.scene, options.load);
+  SceneLoadOptions load = options.load;
+  adoptPlacementSeed(plan, options.plan, load);
+  const world::World world = loadWorld(options.scene, load);
   if (!options.quiet) {
     check.progress = [](const std::string& action) {
       std::cerr << "verify-plan: " << action << "\n";

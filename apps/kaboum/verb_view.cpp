@@ -87,7 +87,9 @@ int run(const Options& options) {
   const symbolic::ContingentProblem problem = symbolic::loadContingent(domain, problemFile);
   printWarnings(problem.domain.warnings);
   printWarnings(problem.problem.warnings);
-  const world::World world = loadWorld(scene, options.load);
+  SceneLoadOptions load = options.load;
+  adoptPlacementSeed(planJson, options.plan, load);
+  const world::World world = loadWorld(scene, load);
   tamp::GeometricAttachments attachments(world);
   symbolic::ProcedureRegistry registry;
   attachments.registerProcedures(registry);

@@ -19,6 +19,7 @@ class World:
         cache_dir: str = "",
         threads: int = 0,
         epsilon: Optional[str] = None,
+        placement_seed: Optional[int] = None,
         geometry: str = "bounded",
         pieces: str = "decomposition",
     ) -> None: ...

@@ -112,7 +112,8 @@ void bindWorld(py::module_& module) {
       .def(
           py::init([](const std::string& scene, bool noCache, const std::string& cacheDir,
                       unsigned threads, std::optional<std::string> epsilon,
-                      const std::string& geometry, const std::string& pieces) {
+                      std::optional<std::uint64_t> placementSeed, const std::string& geometry,
+                      const std::string& pieces) {
             if (pieces != "decomposition" && pieces != "hulls") {
               throw InputError("pieces: expected 'decomposition' or 'hulls', got '" + pieces + "'");
             }
@@ -121,17 +122,20 @@ void bindWorld(py::module_& module) {
             load.cacheDirectory = cacheDir;
             load.threads = threads;
             load.epsilon = std::move(epsilon);
+            load.placementSeed = placementSeed;
             load.pieces =
                 pieces == "hulls" ? world::MeshPieces::Hulls : world::MeshPieces::Decomposition;
             py::gil_scoped_release unlocked;
             return std::make_shared<SceneWorld>(scene, load, geometry);
           }),
           py::arg("scene"), py::kw_only(), py::arg("no_cache") = false, py::arg("cache_dir") = "",
-          py::arg("threads") = 0u, py::arg("epsilon") = py::none(), py::arg("geometry") = "bounded",
+          py::arg("threads") = 0u, py::arg("epsilon") = py::none(),
+          py::arg("placement_seed") = py::none(), py::arg("geometry") = "bounded",
           py::arg("pieces") = "decomposition",
           "Reads and builds `scene` as `kaboum scene` does: decompositions cached in `cache_dir` "
           "(default $KABOUM_CACHE_DIR, $XDG_CACHE_HOME/kaboum or ~/.cache/kaboum) unless "
-          "`no_cache`; `epsilon` ('0.005' metres or '1%') overrides the scene's; `geometry` "
+          "`no_cache`; `epsilon` ('0.005' metres or '1%') overrides the scene's, and "
+          "`placement_seed` its placement_seed (objects with place_in); `geometry` "
           "'exact' answers collision queries with FCL on the original meshes; `pieces` 'hulls' "
           "bounds each mesh by its convex hull instead of decomposing it (fast, coarse: for "
           "tests). Raises InputError.")

@@ -377,8 +377,8 @@ TEST(SceneFileError, UnknownKeysSuggestTheNearestValidKey) {
                    "unknown key 'postion' (did you mean 'position'?)");
   expectSceneError("robot: []\n", "scene.yaml:1:1", "unknown key 'robot' (did you mean 'robots'?)");
   expectSceneError(ball("    colour: red\n"), "scene.yaml:5:5: objects[0]",
-                   "unknown key 'colour' (expected one of: name, geometry, pose, movable, grasps, "
-                   "resting_faces)");
+                   "unknown key 'colour' (expected one of: name, geometry, pose, place_in, "
+                   "movable, grasps, resting_faces)");
   expectSceneError(ball("    pose: {position: [0, 0, 1], position: [1, 0, 0]}\n"),
                    "scene.yaml:5:33: objects[0].pose", "duplicate key 'position'");
   expectSceneError(ball("    geometry: {sphere: {radius: 1}}\n"), "scene.yaml:5:5: objects[0]",
@@ -503,6 +503,33 @@ TEST(SceneFileError, DuplicateNamesAcrossRobotsToolsObjectsAndLocations) {
   expectSceneError(
       ball("    grasps:\n      - {name: top, pose: {}}\n      - {name: TOP, pose: {}}\n"),
       "scene.yaml:7:9: objects[0].grasps[1]", "duplicate grasp name 'TOP'");
+}
+
+TEST(SceneFile, PlaceInNamesALocationAndPlacementSeedIsRead) {
+  const SceneDescription scene =
+      parse("settings: {placement_seed: 7}\n" + ball("    place_in: Tray\n") +
+            "locations:\n  - {name: shelf, region: {box: {size: [1, 1, 1]}}}\n"
+            "  - {name: tray, region: {box: {size: [1, 1, 1]}}}\n");
+  EXPECT_EQ(scene.settings.placementSeed, 7U);
+  EXPECT_EQ(scene.objects[0].placeIn, 1U);
+  EXPECT_EQ(scene.objects[0].poseSource.key, "objects[0].place_in");
+  EXPECT_FALSE(parse(ball()).objects[0].placeIn);
+  EXPECT_EQ(parse(ball()).settings.placementSeed, 1U);
+}
+
+TEST(SceneFileError, PlaceInIsAMovableObjectsLocationInsteadOfAPose) {
+  const std::string tray = "locations:\n  - {name: tray, region: {box: {size: [1, 1, 1]}}}\n";
+  expectSceneError(ball("    place_in: trey\n") + tray, "scene.yaml:5:15: objects[0].place_in",
+                   "unknown location 'trey' (did you mean 'tray'?)");
+  expectSceneError(ball("    pose: {}\n    place_in: tray\n") + tray,
+                   "scene.yaml:6:15: objects[0].place_in",
+                   "an object has a pose or place_in, not both");
+  expectSceneError(
+      "objects:\n  - {name: post, geometry: {sphere: {radius: 1}}, place_in: tray}\n" + tray,
+      "scene.yaml:2:61: objects[0].place_in",
+      "only a movable object has place_in (set movable: true)");
+  expectSceneError("settings: {placement_seed: -2}\n", "scene.yaml:1:28: settings.placement_seed",
+                   "expected a non-negative integer, got '-2'");
 }
 
 TEST(SceneFileError, HomeOutsideJointLimits) {

@@ -231,10 +231,52 @@ TEST(VerifyPlanFileBadInput, OneLineNamesTheFileAndTheKey) {
             "plan.json: nodes[2].geometry[0].steps[1].objects: an object cannot be joined to "
             "itself");
 
+  // A plan made on another layout of the objects (another scene, or --placement-seed).
+  file = planFile();
+  file["initial_state"]["objects"]["block"]["position"][0] =
+      file["initial_state"]["objects"]["block"]["position"][0].get<double>() + 0.02;
+  EXPECT_EQ(inputError(file),
+            "plan.json: initial_state.objects.block: the scene starts the object elsewhere (20.0 "
+            "mm, 0.00° away): the plan was made on another scene or --placement-seed");
+  file = planFile();
+  file["initial_state"]["objects"]["cup"] = file["initial_state"]["objects"]["block"];
+  EXPECT_EQ(inputError(file), "plan.json: initial_state.objects: the scene has no object 'cup'");
+
   EXPECT_EQ(inputError(json::array()), "plan.json: (top level): expected a JSON object");
   file = planFile();
   file["format"] = "kaboum-path";
   EXPECT_EQ(inputError(file), "plan.json: format: expected \"kaboum-plan\"");
+}
+
+// A plan made with the block at a random place (place_in) records its placement seed: verify-plan
+// loads the scene with it, and another layout is one line naming the moved object.
+TEST(VerifyPlanCli, APlanOnARandomLayoutReadsBackWithItsPlacementSeed) {
+  test::ScratchDir dir;
+  std::string scene = test::slurp(example("scene.yaml"));
+  const std::string pose = "    pose: {position: [0.45, 0.25, -0.075]}\n";
+  ASSERT_NE(scene.find(pose), std::string::npos);
+  scene.replace(scene.find(pose), pose.size(),
+                "    place_in: left\n    resting_faces: [[0, 0, -1]]\n");
+  const std::string files = "'" + example("domain.pddl") + "' '" + example("problem.pddl") + "' '" +
+                            dir.write("scene.yaml", scene) + "' ";
+  const std::string plan = dir.file("plan.json");
+  const test::CliResult solved =
+      test::runCli(dir, "solve " + files + "--quiet --placement-seed 2 --plan-out " + plan +
+                            test::sharedCacheOption());
+  ASSERT_EQ(solved.exitCode, 0) << solved.err;
+  EXPECT_EQ(json::parse(test::slurp(plan))["placement_seed"], 2);
+  test::CliResult run =
+      test::runCli(dir, "verify-plan " + files + plan + " -q" + test::sharedCacheOption());
+  EXPECT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_PRED_FORMAT2(::testing::IsSubstring, "verdict:    valid", run.out);
+  run = test::runCli(
+      dir, "verify-plan " + files + plan + " --placement-seed 1" + test::sharedCacheOption());
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_EQ(test::lineCount(run.err), 1U) << run.err;
+  EXPECT_PRED_FORMAT2(::testing::IsSubstring,
+                      "plan.json: initial_state.objects.block: the scene starts the object "
+                      "elsewhere",
+                      run.err);
 }
 
 TEST(VerifyPlanCli, ExitCodesZeroValidOneInvalidTwoBadInput) {

@@ -1,6 +1,7 @@
 // The placement predicates (seed 003 §III-B): isInside, isOnSupportSurface, resting faces and
 // freeSpaceFound, on tests/data/placement-cell.yaml; placements checked on the original geometry
 // (the objects' exact vertices, FCL on the original shapes).
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <random>
 
 #include "../support/test_support.hpp"
+#include "kaboum/core/error.hpp"
 #include "kaboum/io/mesh_io.hpp"
 #include "kaboum/io/scene_file.hpp"
 #include "kaboum/testing/data_paths.hpp"
@@ -677,6 +679,70 @@ TEST(FreeSpaceFound, StacksEqualBlocksFlush) {
   ASSERT_TRUE(found.pose);
   EXPECT_EQ(found.support, (Support{Support::Kind::Object, block(1)}));
   EXPECT_EQ(found.samples, 1U) << "the location's centre, over the stack";
+}
+
+// The placement cell with box_b and the can written `place_in: tray` instead of at a pose, and
+// `more` appended to its settings.
+World cellPlacedInTheTray(const std::string& location = "tray", const std::string& more = "") {
+  std::string text = test::slurp(sourceFile("tests/data/placement-cell.yaml"));
+  for (const char* pose : {"    pose: {position: [0.45, 0.30, 0.75]}\n",
+                           "    pose: {position: [0.65, -0.30, 0.77]}\n"}) {
+    const std::size_t at = text.find(pose);
+    EXPECT_NE(at, std::string::npos) << pose;
+    text.replace(at, std::string(pose).size(), "    place_in: " + location + "\n");
+  }
+  text.replace(text.find("  seed: 3\n"), 10, "  seed: 3\n" + more);
+  return World(parseSceneText(text, "cell.yaml", sourceFile("tests/data")));
+}
+
+// Objects with place_in start at free places in their location, on the table, in every layout;
+// the layout follows placement_seed and nothing else.
+TEST(PlaceIn, ObjectsStartAtRandomFreePlacesInTheirLocation) {
+  std::vector<Pose> first;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    SCOPED_TRACE("placement seed " + std::to_string(seed));
+    const World world = cellPlacedInTheTray("tray", fmt::format("  placement_seed: {}\n", seed));
+    const PlacementGeometry geometry(world);
+    const verify::ReferenceGeometry exact(world);
+    const GeometricState state = world.initialState();
+    const std::size_t tray = world.find("tray").value().index;
+    const std::size_t table = world.find("table").value().index;
+    std::vector<Pose> poses;
+    for (const char* name : {"box_b", "can"}) {
+      const std::size_t object = world.find(name).value().index;
+      const Pose pose = world.scene().pose(object, state.placements);
+      poses.push_back(pose);
+      const std::span<const RestingFace> faces = geometry.restingFaces(object);
+      const auto down = std::find_if(faces.begin(), faces.end(), [&](const RestingFace& face) {
+        return (pose.linear() * face.normal).isApprox(Vec3(0, 0, -1));
+      });
+      ASSERT_NE(down, faces.end()) << "not on a resting face";
+      const FreeSpace placed{pose, {}, static_cast<std::size_t>(down - faces.begin()), 1};
+      expectValidPlacement(geometry, exact, {placed, state}, object, tray,
+                           {Support::Kind::Object, table});
+    }
+    if (seed == 1) {
+      first = poses;
+      const World again = cellPlacedInTheTray("tray", "  placement_seed: 1\n");
+      for (std::size_t i = 0; i < 2; ++i) {
+        const std::size_t object = again.find(i == 0 ? "box_b" : "can").value().index;
+        EXPECT_TRUE(again.scene().pose(object, again.initialState().placements).isApprox(poses[i]));
+      }
+    } else {
+      EXPECT_FALSE(poses[0].isApprox(first[0]));
+    }
+  }
+}
+
+TEST(PlaceIn, NoFreePlaceIsOneLineNamingThePlaceIn) {
+  try {
+    (void)cellPlacedInTheTray("slot");
+    FAIL() << "no error";
+  } catch (const InputError& error) {
+    EXPECT_EQ(std::string(error.what()),
+              "cell.yaml:26:15: objects[2].place_in: no free place for object 'box_b' in "
+              "location 'slot' (2000 random samples)");
+  }
 }
 
 }  // namespace

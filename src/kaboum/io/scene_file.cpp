@@ -155,7 +155,8 @@ struct Fields {
 };
 
 const Names kSceneKeys{"version", "settings", "robots", "objects", "locations"};
-const Names kSettingsKeys{"epsilon", "joint_step", "tool_step", "sweep_epsilon", "seed"};
+const Names kSettingsKeys{"epsilon",       "joint_step", "tool_step",
+                          "sweep_epsilon", "seed",       "placement_seed"};
 const Names kRobotKeys{"name",         "urdf",  "base_pose",          "home",
                        "joint_limits", "tools", "allowed_collisions", "srdf"};
 const Names kJointLimitKeys{"velocity", "acceleration"};
@@ -163,7 +164,8 @@ const Names kToolKeys{"name", "link", "base_link", "tcp", "ik", "hand"};
 const Names kIkMethods{"auto", "closed-form", "numeric"};
 const Names kHandKeys{"links", "shapes", "fingers"};
 const Names kFingerKeys{"open", "closed"};
-const Names kObjectKeys{"name", "geometry", "pose", "movable", "grasps", "resting_faces"};
+const Names kObjectKeys{"name",    "geometry", "pose",         "place_in",
+                        "movable", "grasps",   "resting_faces"};
 const Names kGeometryKeys{"box", "cylinder", "sphere", "mesh", "pose"};
 const Names kGeometryKinds{"box", "cylinder", "sphere", "mesh"};
 const Names kGraspKeys{"name", "constraints", "pose", "free"};
@@ -209,11 +211,12 @@ class SceneReader {
       description.robots.push_back(readRobot(robot));
     }
     for (const Entry& object : section(scene, "objects")) {
-      description.objects.push_back(readObject(object));
+      description.objects.push_back(readObject(object, description.objects.size()));
     }
     for (const Entry& location : section(scene, "locations")) {
       description.locations.push_back(readLocation(location));
     }
+    resolvePlaces(description);
     return description;
   }
 
@@ -512,15 +515,19 @@ class SceneReader {
     }
     if (const auto step = f.find("tool_step")) settings.toolStep = positive(*step);
     if (const auto bound = f.find("sweep_epsilon")) settings.sweepEpsilon = positive(*bound);
-    if (const auto seed = f.find("seed")) {
-      const std::string text = scalar(*seed, "a non-negative integer");
-      const auto [end, error] =
-          std::from_chars(text.data(), text.data() + text.size(), settings.seed);
-      if (error != std::errc() || end != text.data() + text.size()) {
-        fail(*seed, "expected a non-negative integer, got " + inQuotes(text));
-      }
-    }
+    if (const auto seed = f.find("seed")) settings.seed = seedValue(*seed);
+    if (const auto seed = f.find("placement_seed")) settings.placementSeed = seedValue(*seed);
     return settings;
+  }
+
+  [[nodiscard]] std::uint64_t seedValue(const Entry& entry) const {
+    const std::string text = scalar(entry, "a non-negative integer");
+    std::uint64_t value = 0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (error != std::errc() || end != text.data() + text.size()) {
+      fail(entry, "expected a non-negative integer, got " + inQuotes(text));
+    }
+    return value;
   }
 
   // ---- Robots.
@@ -772,7 +779,7 @@ class SceneReader {
 
   // ---- Objects.
 
-  ObjectSpec readObject(const Entry& entry) {
+  ObjectSpec readObject(const Entry& entry, std::size_t index) {
     const Fields f = fields(entry, kObjectKeys);
     ObjectSpec object;
     object.source = where(entry);
@@ -783,8 +790,13 @@ class SceneReader {
       object.pose = pose(*placement);
       object.poseSource = where(*placement);
     }
+    if (const auto place = f.find("place_in")) {
+      if (f.has("pose")) fail(*place, "an object has a pose or place_in, not both");
+      placesIn_.push_back({index, symbol(*place), *place});
+      object.poseSource = where(*place);
+    }
     if (const auto movable = f.find("movable")) object.movable = boolean(*movable);
-    for (const char* key : {"grasps", "resting_faces"}) {
+    for (const char* key : {"grasps", "resting_faces", "place_in"}) {
       if (const auto found = f.find(key); found && !object.movable) {
         fail(*found, "only a movable object has " + std::string(key) + " (set movable: true)");
       }
@@ -946,9 +958,34 @@ class SceneReader {
     return result;
   }
 
+  // Each object's `place_in`, once the locations are read: the index of the location it names.
+  void resolvePlaces(SceneDescription& description) const {
+    std::vector<std::string> locations;
+    for (const LocationSpec& location : description.locations) locations.push_back(location.name);
+    for (const PlaceIn& place : placesIn_) {
+      const auto found = std::find_if(locations.begin(), locations.end(), [&](const auto& name) {
+        return lowerCase(name) == lowerCase(place.location);
+      });
+      if (found == locations.end()) {
+        fail(place.entry, "unknown location " + inQuotes(place.location) +
+                              suggestion(place.location, locations));
+      }
+      description.objects[place.object].placeIn =
+          static_cast<std::size_t>(found - locations.begin());
+    }
+  }
+
+  // A `place_in` as written (object index, location name), resolved once the locations are read.
+  struct PlaceIn {
+    std::size_t object = 0;
+    std::string location;
+    Entry entry;
+  };
+
   std::string sourceName_;
   fs::path baseDir_;
   std::map<std::string, SourceLocation> names_;  // lower-case name → where it was first given
+  std::vector<PlaceIn> placesIn_;                // in object order
 };
 
 }  // namespace

@@ -142,11 +142,15 @@ struct ObjectSpec {
   std::string name;
   Geometry geometry;
   Pose pose = Pose::Identity();  // initial pose in the world
+  // `place_in`: the location (index into SceneDescription::locations) where the World puts the
+  // object at a random free pose instead of `pose` (movable objects only; seeded by
+  // SceneSettings::placementSeed).
+  std::optional<std::size_t> placeIn;
   bool movable = false;
   std::vector<GraspSpec> grasps;  // empty for a static object
   RestingFaces restingFaces;
   SourceLocation source;
-  SourceLocation poseSource;  // the `pose` entry, or the object's when it has none
+  SourceLocation poseSource;  // the `pose` or `place_in` entry, or the object's when it has none
 };
 
 // A convex region: the box [lower, upper] in the frame `pose`.
@@ -181,6 +185,7 @@ struct SceneSettings {
   double toolStep = 0.005;                    // metres
   double sweepEpsilon = 0.005;                // metres: bound of the swept volumes of motions
   std::uint64_t seed = 1;
+  std::uint64_t placementSeed = 1;  // of the objects placed at random (ObjectSpec::placeIn)
   SourceLocation source;
 };
 

@@ -177,6 +177,7 @@ nlohmann::json planFileJson(Solver& solver, const SolveResult& result, const Pla
           {"domain", sources.domain},
           {"problem", sources.problem},
           {"scene", sources.scene},
+          {"placement_seed", solver.world().description().settings.placementSeed},
           {"status", toString(result.status)},
           {"robots", robotsJson(solver.world())},
           {"initial_state", stateJson(solver.world(), solver.world().initialState())},

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <set>
 #include <stdexcept>
 #include <tuple>
@@ -22,6 +23,10 @@ using json = nlohmann::json;
 using namespace kaboum::symbolic;
 
 namespace {
+
+// Metres and radians: how far a plan file's initial object pose may lie from the scene's (the
+// file's numbers are printed at full precision).
+constexpr double kInitialPoseTolerance = 1e-6;
 
 // The keys of one plan file: each read names where it failed.
 class Reader {
@@ -65,6 +70,30 @@ class Reader {
     }
     return out;
   }
+  // The plan's initial object poses against the World's: a plan made on another layout (another
+  // scene file, or --placement-seed) does not apply.
+  void checkInitialPlacements(const json& state) const {
+    const json& objects = member(state, "initial_state", "objects");
+    if (!objects.is_object()) fail("initial_state.objects", "expected an object");
+    const GeometricState initial = world_.initialState();
+    for (const auto& [name, value] : objects.items()) {
+      const std::optional<NamedEntity> entity = world_.find(name);
+      if (!entity || entity->kind != NamedEntity::Kind::Object) {
+        fail("initial_state.objects", "the scene has no object '" + name + "'");
+      }
+      const Pose planned = pose(objects, "initial_state.objects", name);
+      const Pose scene = world_.scene().pose(entity->index, initial.placements);
+      const double offset = (planned.translation() - scene.translation()).norm();
+      const double turn = Eigen::AngleAxisd(planned.linear().transpose() * scene.linear()).angle();
+      if (offset > kInitialPoseTolerance || turn > kInitialPoseTolerance) {
+        fail("initial_state.objects." + name,
+             fmt::format("the scene starts the object elsewhere ({:.1f} mm, {:.2f}° away): the "
+                         "plan was made on another scene or --placement-seed",
+                         1000 * offset, turn * 180 / std::numbers::pi));
+      }
+    }
+  }
+
   // A pose as io::toJson(Pose) writes it: {position, quaternion_wxyz}.
   Pose pose(const json& object, const std::string& key, const std::string& name) const {
     return io::poseFromJson(member(object, key, name), file_, key + "." + name);
@@ -193,6 +222,7 @@ class Reader {
       fail("format", "expected \"kaboum-plan\"");
     }
     if (index(file, "(top level)", "version") != 1) fail("version", "only version 1 is known");
+    if (file.contains("initial_state")) checkInitialPlacements(file["initial_state"]);
     const json& nodes = array(file, "(top level)", "nodes");
     PlanFileContents contents;
     contents.plan.nodes.resize(nodes.size());

@@ -15,6 +15,7 @@
 #include "kaboum/core/worker_pool.hpp"
 #include "kaboum/io/mesh_io.hpp"
 #include "kaboum/io/urdf_loader.hpp"
+#include "kaboum/world/placement.hpp"
 #include "kaboum/world/state_predicates.hpp"
 
 namespace kaboum::world {
@@ -26,6 +27,12 @@ using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
+
+// The positions an object with place_in may take at most (freeSpaceFound's random strategy), the
+// draws when they put it on another movable object, and how far apart the objects' seeds lie.
+constexpr std::size_t kRandomPlacementSamples = 2000;
+constexpr std::size_t kRandomPlacementDraws = 20;
+constexpr std::uint64_t kPlacementSeedStride = 1000003;
 
 // How many times the piece limit of a decomposition is doubled at most while it stops above ε.
 constexpr std::size_t kPieceLimitDoublings = 3;
@@ -397,6 +404,7 @@ World::World(SceneDescription scene, const WorldOptions& options) : description_
   const std::vector<std::size_t> bottomUp = movableBottomUp(scene_, initialPlacements_);
   for (const std::size_t o : bottomUp) initialPlacements_[scene_.slot(o)].present = false;
   for (const std::size_t o : bottomUp) {
+    if (objects[o].placeIn) continue;  // placed at random below, once the others stand
     initialPlacements_[scene_.slot(o)].present = true;
     Pose& pose = initialPlacements_[scene_.slot(o)].pose;
     const std::optional<std::size_t> near =
@@ -430,9 +438,46 @@ World::World(SceneDescription scene, const WorldOptions& options) : description_
   for (std::size_t l = 0; l < description_.locations.size(); ++l) {
     names_[lowerCase(description_.locations[l].name)] = {NamedEntity::Kind::Location, l};
   }
+  placeAtRandom();
   if (cache) cacheReport_ = cache->report();
   validateInitialState();
   preprocessingSeconds_ = secondsSince(start);
+}
+
+void World::placeAtRandom() {
+  const auto& objects = description_.objects;
+  if (std::none_of(objects.begin(), objects.end(), [](const auto& o) { return o.placeIn; })) return;
+  const PlacementGeometry placement(*this);
+  QueryScratch queries = scratch();
+  for (std::size_t o = 0; o < objects.size(); ++o) {
+    if (!objects[o].placeIn) continue;
+    FreeSpaceOptions options;
+    options.strategy = SearchStrategy::Random;
+    options.maxSamples = kRandomPlacementSamples;
+    options.seed = description_.settings.placementSeed * kPlacementSeedStride + o;
+    Placement& placed = initialPlacements_[scene_.slot(o)];
+    // A pose on another movable object (a stack) is drawn again, with the next seed.
+    FreeSpace found;
+    for (std::size_t draw = 0; draw < kRandomPlacementDraws; ++draw, ++options.seed) {
+      placed.present = false;
+      found = placement.freeSpaceFound(initialState(), o, *objects[o].placeIn, options, queries);
+      if (!found.pose) break;
+      placed = {*found.pose, true};
+      const GeometricState state = initialState();
+      bool stacked = false;
+      for (std::size_t other = 0; other < objects.size() && !stacked; ++other) {
+        stacked = other != o && scene_.movable(other) && placement.objectOnTop(state, other) == o;
+      }
+      if (!stacked) break;
+      found.pose.reset();
+    }
+    if (!found.pose) {
+      placed.present = false;
+      throw InputError(objects[o].poseSource.message(fmt::format(
+          "no free place for object '{}' in location '{}' ({} random samples)", objects[o].name,
+          description_.locations[*objects[o].placeIn].name, found.samples)));
+    }
+  }
 }
 
 void World::validateInitialState() {

@@ -122,12 +122,13 @@ class StatePredicates;  // state_predicates.hpp
 
 class World {
  public:
-  // Builds the geometry of `scene`. Movable objects resting on another object (touching it, free
-  // once raised by at most the two bodies' bounding error, or nearer to it than restingGap()) are
-  // raised until they are restingGap() clear of it, as placements are (isOnSupportSurface), the
-  // lowest first so that a stack written touching rises as a whole. Throws
-  // InputError with one line naming the entry (SourceLocation::message) when two objects start in
-  // collision or a robot at home collides with an object or another robot.
+  // Builds the geometry of `scene`. Objects with place_in are put at a random free pose in their
+  // location once the others stand (placeAtRandom). Movable objects resting on another object
+  // (touching it, free once raised by at most the two bodies' bounding error, or nearer to it than
+  // restingGap()) are raised until they are restingGap() clear of it, as placements are
+  // (isOnSupportSurface), the lowest first so that a stack written touching rises as a whole.
+  // Throws InputError with one line naming the entry (SourceLocation::message) when two objects
+  // start in collision or a robot at home collides with an object or another robot.
   explicit World(SceneDescription scene, const WorldOptions& options = {});
 
   [[nodiscard]] const SceneDescription& description() const { return description_; }
@@ -215,6 +216,13 @@ class World {
   // The URDF name of a robot party's link (party.link >= 0).
   [[nodiscard]] std::string linkName(const Party& party) const;
   void checkState(const GeometricState& state) const;
+  // Puts each object with place_in, in file order, at a random free pose in its location
+  // (PlacementGeometry::freeSpaceFound, random strategy, seeded by the scene's placement_seed and
+  // the object's id), clear of the robots at home and the objects already standing, resting on a
+  // static object or a support surface (a draw that stacks it on a movable object is redrawn with
+  // the next seed, 20 times at most). Throws
+  // InputError naming the object's place_in when no sample gives one.
+  void placeAtRandom();
   void validateInitialState();
 
   SceneDescription description_;
