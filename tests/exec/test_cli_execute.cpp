@@ -132,7 +132,8 @@ TEST(ExecuteCli, BadInputIsOneLineWithExitCode2) {
   // A plan of another problem: pick and place's against the Bartender.
   expectBadInput(run(dir, "execute " + exampleFiles("bartender", "problem-1.pddl") +
                               quoted(execData("pick-and-place.plan.json"))),
-                 "pick-and-place.plan.json: nodes[");
+                 "pick-and-place.plan.json: initial_state.objects: the scene has no object "
+                 "'block'");
   const std::string state = dir.write("state.json", R"({"objects": {"cup": {}}})");
   expectBadInput(run(dir, pickAndPlaceRun() + "--world-state " + quoted(state)),
                  "state.json: objects.cup: no object 'cup' in the scene");

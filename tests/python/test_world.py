@@ -1,5 +1,7 @@
 """The scene from Python: geometric states and their numpy round trips, forward and inverse
 kinematics, collisions, certified motions; meshes bounded and decomposed."""
+import pathlib
+
 import numpy as np
 import pytest
 
@@ -15,6 +17,24 @@ def test_names_and_the_initial_state(pick_and_place):
     state = pick_and_place.initial_state()
     assert pick_and_place.first_collision(state) is None
     assert state.holder("block") is None and state.held("kr5") == []
+
+
+def test_placement_seed_chooses_the_layout_of_objects_placed_at_random(tmp_path):
+    text = pathlib.Path(example("pick-and-place/scene.yaml")).read_text()
+    pose = "    pose: {position: [0.45, 0.25, -0.075]}\n"
+    assert pose in text
+    scene = tmp_path / "scene.yaml"
+    scene.write_text(text.replace(pose, "    place_in: left\n    resting_faces: [[0, 0, -1]]\n"))
+
+    def block(seed):
+        world = kaboum.World(str(scene), pieces="hulls", placement_seed=seed)
+        return world.initial_state().object_pose("block")
+
+    np.testing.assert_array_equal(block(3), block(3))
+    assert not np.allclose(block(3), block(4))
+    for seed in (3, 4):
+        x, y = block(seed)[:2, 3]
+        assert 0.3 < x < 0.6 and 0.1 < y < 0.4  # in the location 'left'
 
 
 def test_a_configuration_round_trips_through_numpy(pick_and_place):
