@@ -455,14 +455,18 @@ class AndOrSearch {
             const int child = candidate.deferred ? -1 : candidate.outcomes[0].belief;
             if (child >= 0 && (state_[child] != kOpen || !seen.insert(child).second)) continue;
             const long steps = nodes[index].steps + 1;
-            if (steps > bound) {
+            int& generated = transitions[transitionKey(symbolic, candidate.op)];
+            // ids bounds the round of a transition as it bounds the depth: an iteration tries at
+            // most `bound` geometric variants of each symbolic transition, so that a shallow
+            // iteration does not exhaust every geometric state within its depth.
+            if (steps > bound || (deepening && generated >= bound)) {
               cut = true;
               continue;
             }
             nodes.push_back(
                 {child, static_cast<int>(index), candidate.op, candidate.sample, steps});
-            open.push({transitions[transitionKey(symbolic, candidate.op)]++,
-                       priority(steps, candidate.score, nodes.size() - 1), nodes.size() - 1});
+            open.push({generated++, priority(steps, candidate.score, nodes.size() - 1),
+                       nodes.size() - 1});
             continue;
           }
           const int rest = solveOutcome(candidate.outcomes, candidate.root, depth + 1);
