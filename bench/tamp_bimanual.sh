@@ -3,9 +3,11 @@
 # geometry (bounded predicates on the bounding convex decomposition, or exact predicates on the
 # original meshes) and search, `kaboum solve` with seeds 1..N, and the mean ± standard deviation of
 # every row of the table over the solved runs, from the plan file's statistics (docs/plan-format.md).
-# Verification is left out of the times, as in the thesis. Prints Markdown. Usage:
+# Verification is left out of the times, as in the thesis. Seed N is also the placement seed, so
+# with scene-random.yaml (the parts at random places, two extra obstacles) each run has its own
+# layout. Prints Markdown. Usage:
 #   bench/tamp_bimanual.sh [kaboum binary] [seeds (12)] [time limit s (120)] [searches (dfs bfs ids gbfs)]
-#                          [geometries (bounded exact)]
+#                          [geometries (bounded exact)] [scene (scene.yaml)]
 set -uo pipefail
 cd "$(dirname "$0")/.."
 kaboum=${1:-build/release/kaboum}
@@ -13,6 +15,7 @@ seeds=${2:-12}
 limit=${3:-120}
 searches=${4:-dfs bfs ids gbfs}
 geometries=${5:-bounded exact}
+scene=${6:-scene.yaml}
 example=examples/bimanual-assembly
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
@@ -20,16 +23,17 @@ trap 'rm -rf "$out"' EXIT
 for geometry in $geometries; do
   for search in $searches; do
     for ((seed = 1; seed <= seeds; ++seed)); do
-      "$kaboum" solve "$example/domain.pddl" "$example/problem.pddl" "$example/scene.yaml" \
-        --search "$search" --geometry "$geometry" --seed "$seed" --time-limit "$limit" \
+      "$kaboum" solve "$example/domain.pddl" "$example/problem.pddl" "$example/$scene" \
+        --search "$search" --geometry "$geometry" --seed "$seed" --placement-seed "$seed" \
+        --time-limit "$limit" \
         --no-verify --json --quiet > "$out/$geometry-$search-$seed.json" 2> /dev/null
     done
   done
 done
 
-python3 - "$out" "$seeds" "$limit" "$searches" "$geometries" <<'PY'
+python3 - "$out" "$seeds" "$limit" "$searches" "$geometries" "$scene" <<'PY'
 import json, statistics, sys
-out, seeds, limit, searches, geometries = sys.argv[1], int(sys.argv[2]), sys.argv[3], sys.argv[4].split(), sys.argv[5].split()
+out, seeds, limit, searches, geometries, scene = sys.argv[1], int(sys.argv[2]), sys.argv[3], sys.argv[4].split(), sys.argv[5].split(), sys.argv[6]
 rows = [("Total time [s]", "total_seconds", 3), ("Symbolic planning [s]", "symbolic_seconds", 3),
         ("Geometric search [s]", "geometric_seconds", 3), ("Inverse kinematics calls", "ik_calls", 1),
         ("Inverse kinematics [s]", "ik_seconds", 3), ("Collision checks", "collision_checks", 0),
@@ -50,7 +54,7 @@ for geometry in geometries:
                 s["positive_share"] = 100 * s["positive_share"]
                 solved.append(s)
         runs[search] = solved
-    print(f"\n**{geometry} predicates** (seeds 1–{seeds}, time limit {limit} s)\n")
+    print(f"\n**{scene}, {geometry} predicates** (seeds 1–{seeds}, time limit {limit} s)\n")
     print("| | " + " | ".join(searches) + " |")
     print("|---|" + "---|" * len(searches))
     print("| Solved | " + " | ".join(f"{len(runs[s])}/{seeds}" for s in searches) + " |")
