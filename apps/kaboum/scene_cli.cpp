@@ -81,14 +81,16 @@ world::World loadWorld(const std::string& sceneFile, const SceneLoadOptions& opt
   return world::World(std::move(scene), worldOptions);
 }
 
-void adoptPlacementSeed(const nlohmann::json& plan, const std::string& planFile,
-                        SceneLoadOptions& options) {
-  if (options.placementSeed || !plan.is_object() || !plan.contains("placement_seed")) return;
-  const nlohmann::json& seed = plan["placement_seed"];
-  if (!seed.is_number_unsigned()) {
-    throw InputError(locate(planFile, "placement_seed: expected a non-negative integer"));
+world::World loadPlanWorld(const std::string& sceneFile, SceneLoadOptions options,
+                           const nlohmann::json& plan, const std::string& planFile) {
+  if (!options.placementSeed && plan.is_object() && plan.contains("placement_seed")) {
+    const nlohmann::json& seed = plan["placement_seed"];
+    if (!seed.is_number_unsigned()) {
+      throw InputError(locate(planFile, "placement_seed: expected a non-negative integer"));
+    }
+    options.placementSeed = seed.get<std::uint64_t>();
   }
-  options.placementSeed = seed.get<std::uint64_t>();
+  return loadWorld(sceneFile, options);
 }
 
 void addVerifyStepOptions(CLI::App& command, VerifyStepOptions& options) {

@@ -48,11 +48,11 @@ void applyEpsilonOption(const std::string& text, io::SceneSettings& settings);
 // InputError for a bad file, a failed load-time check or a cache directory that cannot be created.
 world::World loadWorld(const std::string& sceneFile, const SceneLoadOptions& options);
 
-// The placement seed of a plan file's scene (its `placement_seed`), unless --placement-seed gave
-// one: the layout the plan was made on. Throws InputError naming `planFile` for a value that is
-// not a non-negative integer.
-void adoptPlacementSeed(const nlohmann::json& plan, const std::string& planFile,
-                        SceneLoadOptions& options);
+// loadWorld for a plan file's scene (verify-plan, view, execute): with the plan's
+// `placement_seed`, the layout it was made on, unless --placement-seed gave one. Throws InputError
+// naming `planFile` for a placement_seed that is not a non-negative integer.
+world::World loadPlanWorld(const std::string& sceneFile, SceneLoadOptions options,
+                           const nlohmann::json& plan, const std::string& planFile);
 
 // How densely verify-path and verify-plan sample a path (docs/verify.md), in the user's units.
 struct VerifyStepOptions {

@@ -110,9 +110,7 @@ int run(const Options& options) {
   const nlohmann::json planJson = io::readJsonFile(options.plan);
   const nlohmann::json worldStateJson =
       options.worldState.empty() ? nlohmann::json() : io::readJsonFile(options.worldState);
-  SceneLoadOptions load = options.load;
-  adoptPlacementSeed(planJson, options.plan, load);
-  const world::World world = loadWorld(options.scene, load);
+  const world::World world = loadPlanWorld(options.scene, options.load, planJson, options.plan);
   tamp::GeometricAttachments attachments(world);
   symbolic::ProcedureRegistry registry;
   attachments.registerProcedures(registry);

@@ -112,9 +112,7 @@ int run(const Options& options) {
   printWarnings(problem.domain.warnings);
   printWarnings(problem.problem.warnings);
   const nlohmann::json plan = io::readJsonFile(options.plan);
-  SceneLoadOptions load = options.load;
-  adoptPlacementSeed(plan, options.plan, load);
-  const world::World world = loadWorld(options.scene, load);
+  const world::World world = loadPlanWorld(options.scene, options.load, plan, options.plan);
   if (!options.quiet) {
     check.progress = [](const std::string& action) {
       std::cerr << "verify-plan: " << action << "\n";

@@ -87,9 +87,7 @@ int run(const Options& options) {
   const symbolic::ContingentProblem problem = symbolic::loadContingent(domain, problemFile);
   printWarnings(problem.domain.warnings);
   printWarnings(problem.problem.warnings);
-  SceneLoadOptions load = options.load;
-  adoptPlacementSeed(planJson, options.plan, load);
-  const world::World world = loadWorld(scene, load);
+  const world::World world = loadPlanWorld(scene, options.load, planJson, options.plan);
   tamp::GeometricAttachments attachments(world);
   symbolic::ProcedureRegistry registry;
   attachments.registerProcedures(registry);

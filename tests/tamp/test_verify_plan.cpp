@@ -241,6 +241,8 @@ TEST(VerifyPlanFileBadInput, OneLineNamesTheFileAndTheKey) {
   file = planFile();
   file["initial_state"]["objects"]["cup"] = file["initial_state"]["objects"]["block"];
   EXPECT_EQ(inputError(file), "plan.json: initial_state.objects: the scene has no object 'cup'");
+  file["initial_state"]["objects"] = 3;
+  EXPECT_EQ(inputError(file), "plan.json: initial_state.objects: expected an object");
 
   EXPECT_EQ(inputError(json::array()), "plan.json: (top level): expected a JSON object");
   file = planFile();
@@ -277,6 +279,14 @@ TEST(VerifyPlanCli, APlanOnARandomLayoutReadsBackWithItsPlacementSeed) {
                       "plan.json: initial_state.objects.block: the scene starts the object "
                       "elsewhere",
                       run.err);
+  json negative = json::parse(test::slurp(plan));
+  negative["placement_seed"] = -2;
+  const std::string badSeed = dir.write("bad-seed.json", negative.dump());
+  run = test::runCli(dir, "verify-plan " + files + badSeed + test::sharedCacheOption());
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_EQ(test::lineCount(run.err), 1U) << run.err;
+  EXPECT_PRED_FORMAT2(::testing::IsSubstring,
+                      "bad-seed.json: placement_seed: expected a non-negative integer", run.err);
 }
 
 TEST(VerifyPlanCli, ExitCodesZeroValidOneInvalidTwoBadInput) {
